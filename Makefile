@@ -1,0 +1,18 @@
+# The two commands a new user needs; both set the environment up first (idempotent).
+#   make run [CASE=my_case.toml]   the main job
+#   make test                      the whole test suite
+PY := .venv/bin/python
+CASE ?=
+
+.PHONY: setup run test lint
+setup:
+	@bash scripts/bootstrap.sh
+
+run: setup
+	$(PY) -m strand run $(CASE)
+
+test: setup
+	$(PY) -m pytest
+
+lint: setup
+	.venv/bin/ruff check . && .venv/bin/ruff format --check .

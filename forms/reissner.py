@@ -1,0 +1,215 @@
+"""Geometrically exact (Simo-Reissner) 3D beam on a 1D manifold mesh in 3D, in UFL.
+
+Units are whatever the user's are, consistently; strand itself uses SI (m, N, Pa, rad).
+
+Unknowns. One blocked P1 field ``w`` of shape (6,) per node: displacement u = w[0:3] and rotation
+vector θ = w[3:6] of the cross-section (total, from the initial configuration).
+
+Frames. Every cell carries an initial orthonormal frame Λ0 = [t, e2, e3] whose first column is the
+unit tangent of the (straight) cell; curved wires are polylines whose kinks are stress-free. The
+current frame is Λ(θ) Λ0.
+
+Strains, in the material (section) frame, at the cell midpoint (the one Gauss point):
+
+* Γ = Λ0ᵀ (Λmᵀ (t + u') − t)     axial (Γ1) and shear (Γ2, Γ3) strains,
+* K = Λ0ᵀ log(Λaᵀ Λb) / h         torsion (K1) and bending (K2, K3) curvatures,
+
+with ' = d/ds along the cell, h the cell length, Λa, Λb the nodal rotations and Λm their geodesic
+midpoint (quaternion SLERP at ½). This is the two-node, one-point form of the strain-invariant
+element of Jelenić & Crisfield (CMAME 171, 1999): strains depend on relative rotations only, so they
+are objective (a rigid rotation of a loaded beam leaves them unchanged to round-off) and
+path-independent. Interpolating the total rotation vector instead (K = Tᵀ(θ)θ') is not objective:
+its midpoint rotation errs by O(φ²), φ the relative rotation of the two nodes, which shows up as
+spurious shear forces κGA·O(φ²). Nodal values are recovered exactly at the midpoint from the P1
+field as θ ∓ (h/2) θ'. Adjacent nodal rotation vectors must differ by less than π.
+
+Linear elastic circular section: N = diag(EA, κGA, κGA) Γ and M = diag(GJ, EI, EI) K. One Gauss
+point per cell (uniform reduced integration) is the classical cure for shear locking of two-node
+Reissner elements; it leaves no spurious zero-energy mode.
+
+The residual is the derivative of the strain energy, so the tangent from ``ufl.derivative`` is
+consistent and symmetric (for conservative loads).
+"""
+
+from __future__ import annotations
+
+import math
+
+import ufl
+
+from .rotations import (
+    curvature_matrix,
+    quaternion,
+    quaternion_conjugate,
+    quaternion_log,
+    quaternion_matrix,
+    quaternion_product,
+)
+
+__all__ = [
+    "CircularSection",
+    "ReissnerBeam",
+    "unit_tangent",
+    "tangent_frame",
+    "moment_virtual_work",
+    "REDUCED_QUADRATURE",
+]
+
+#: Form metadata for the one-point (midpoint) rule used for every beam term.
+REDUCED_QUADRATURE = {"quadrature_degree": 1}
+
+
+def unit_tangent(mesh) -> ufl.core.expr.Expr:
+    """Unit tangent of each cell of a 1D mesh embedded in 3D, oriented along the cell's node order."""
+    J = ufl.Jacobian(mesh)
+    t = ufl.as_vector([J[0, 0], J[1, 0], J[2, 0]])
+    return t / ufl.sqrt(ufl.dot(t, t))
+
+
+def tangent_frame(t: ufl.core.expr.Expr, hint: ufl.core.expr.Expr | None = None):
+    """Orthonormal frame Λ0 = [t, e2, e3] (columns) built from the tangent t.
+
+    e2 is the part of ``hint`` orthogonal to t. Without a hint, e_x is used unless t is within
+    ~25° of e_x, then e_y: this works for straight wires along any axis and for helices.
+    """
+    if hint is None:
+        ex, ey = ufl.as_vector([1.0, 0.0, 0.0]), ufl.as_vector([0.0, 1.0, 0.0])
+        hint = ufl.conditional(ufl.lt(abs(t[0]), 0.9), ex, ey)
+    e2 = hint - ufl.dot(hint, t) * t
+    e2 = e2 / ufl.sqrt(ufl.dot(e2, e2))
+    e3 = ufl.cross(t, e2)
+    return ufl.as_matrix([[t[i], e2[i], e3[i]] for i in range(3)])
+
+
+class CircularSection:
+    """Elastic solid circular section of diameter d (m), Young's modulus E (Pa), Poisson ratio ν.
+
+    Arguments may be numbers, ``Constant`` or cell-wise (DG0) ``Function`` objects, so one mesh can
+    mix steel and aluminium wires. The shear coefficient defaults to Cowper's 6(1+ν)/(7+6ν).
+    """
+
+    def __init__(self, d, E, nu, shear_coefficient=None):
+        self.d, self.E, self.nu = d, E, nu
+        self.G = E / (2 * (1 + nu))
+        self.shear_coefficient = (
+            6 * (1 + nu) / (7 + 6 * nu) if shear_coefficient is None else shear_coefficient
+        )
+        self.area = math.pi * d**2 / 4
+        self.second_moment = math.pi * d**4 / 64
+        self.polar_moment = math.pi * d**4 / 32
+
+    @property
+    def EA(self):
+        """Axial stiffness (N)."""
+        return self.E * self.area
+
+    @property
+    def GA(self):
+        """Shear stiffness κGA (N)."""
+        return self.shear_coefficient * self.G * self.area
+
+    @property
+    def GJ(self):
+        """Torsional stiffness (N m²)."""
+        return self.G * self.polar_moment
+
+    @property
+    def EI(self):
+        """Bending stiffness (N m²), the same about both axes."""
+        return self.E * self.second_moment
+
+    def force_stiffness(self):
+        return ufl.as_matrix([[self.EA, 0, 0], [0, self.GA, 0], [0, 0, self.GA]])
+
+    def moment_stiffness(self):
+        return ufl.as_matrix([[self.GJ, 0, 0], [0, self.EI, 0], [0, 0, self.EI]])
+
+
+class ReissnerBeam:
+    """Strain measures, section forces, energy and residual of a Reissner beam.
+
+    Args:
+        w: the (6,)-valued P1 unknown (u, θ) on a 1D mesh in 3D.
+        section: the section law (``CircularSection``).
+        frame: initial frame Λ0 = [t, e2, e3] per cell; default ``tangent_frame(unit_tangent(mesh))``.
+        dx: integration measure; default one-point rule (reduced integration).
+    """
+
+    def __init__(self, w, section: CircularSection, frame=None, dx=None):
+        mesh = w.function_space.mesh
+        self.w = w
+        self.section = section
+        self.t = unit_tangent(mesh)
+        self.frame = tangent_frame(self.t) if frame is None else frame
+        self.dx = dx if dx is not None else ufl.Measure("dx", mesh, metadata=REDUCED_QUADRATURE)
+        self.u = ufl.as_vector([w[i] for i in range(3)])
+        self.theta = ufl.as_vector([w[i] for i in range(3, 6)])
+        J = ufl.Jacobian(mesh)
+        self.h = ufl.sqrt(sum(J[i, 0] ** 2 for i in range(3)))  # cell length
+        dtheta = self.d_ds(self.theta)
+        q_a = quaternion(self.theta - self.h / 2 * dtheta)
+        q_b = quaternion(self.theta + self.h / 2 * dtheta)
+        #: midpoint rotation Λm (SLERP at ½ of the nodal rotations)
+        self.Lambda = quaternion_matrix((q_a[0] + q_b[0], q_a[1] + q_b[1]))
+        #: relative rotation vector of the two nodes, in the frame of node a (= of the midpoint)
+        self.phi = quaternion_log(quaternion_product(quaternion_conjugate(q_a), q_b))
+
+    def d_ds(self, f):
+        """Derivative along the cell, d/ds."""
+        return ufl.dot(ufl.grad(f), self.t)
+
+    @property
+    def Gamma(self):
+        """Material translational strains (axial, shear 2, shear 3)."""
+        L0, Lam, t = self.frame, self.Lambda, self.t
+        return L0.T * (Lam.T * (t + self.d_ds(self.u)) - t)
+
+    @property
+    def K(self):
+        """Material curvatures (torsion, bending 2, bending 3) in rad/m."""
+        return self.frame.T * self.phi / self.h
+
+    @property
+    def N(self):
+        """Material section forces (axial N, shears V2, V3) in N."""
+        return self.section.force_stiffness() * self.Gamma
+
+    @property
+    def M(self):
+        """Material section moments (torque, bending M2, M3) in N m."""
+        return self.section.moment_stiffness() * self.K
+
+    def section_forces(self):
+        """(N, V2, V3, Mt, M2, M3) as one 6-vector, material frame."""
+        N, M = self.N, self.M
+        return ufl.as_vector([N[0], N[1], N[2], M[0], M[1], M[2]])
+
+    def spatial_force(self):
+        """Section force n = Λ Λ0 N in the global frame (N)."""
+        return self.Lambda * (self.frame * self.N)
+
+    def spatial_moment(self):
+        """Section moment m = Λ Λ0 M in the global frame (N m)."""
+        return self.Lambda * (self.frame * self.M)
+
+    def strain_energy_density(self):
+        return 0.5 * (ufl.dot(self.Gamma, self.N) + ufl.dot(self.K, self.M))
+
+    def energy(self) -> ufl.Form:
+        """Strain energy (J)."""
+        return self.strain_energy_density() * self.dx
+
+    def residual(self, v=None) -> ufl.Form:
+        """Internal virtual work δΠ(w; v); add external work with a minus sign."""
+        if v is None:
+            v = ufl.TestFunction(self.w.function_space)
+        return ufl.derivative(self.energy(), self.w, v)
+
+
+def moment_virtual_work(moment, theta, v_theta) -> ufl.core.expr.Expr:
+    """Virtual work m·δω = m·T(θ)δθ of a fixed-direction (spatial) moment m on the rotation dofs.
+
+    Integrate it on the points where the moment acts (e.g. ``ds(tag)`` at a wire end).
+    For a planar rotation about the moment axis this reduces to m·δθ.
+    """
+    return ufl.dot(moment, curvature_matrix(theta) * v_theta)

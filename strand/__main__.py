@@ -1,0 +1,3 @@
+from strand.cli import main
+
+raise SystemExit(main())

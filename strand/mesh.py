@@ -1,0 +1,70 @@
+"""dolfinx meshes of wires: 1D manifolds embedded in 3D, and node ↔ dof-block maps."""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+import strand  # noqa: F401
+
+import basix.ufl  # isort: skip
+import dolfinx  # isort: skip
+from dolfinx import fem  # isort: skip
+from mpi4py import MPI  # isort: skip
+
+__all__ = ["polyline_mesh", "straight_beam_mesh", "beam_space", "node_to_block", "input_to_block"]
+
+
+def polyline_mesh(
+    comm: MPI.Comm, points: npt.ArrayLike, cells: npt.ArrayLike, partitioner=None
+) -> dolfinx.mesh.Mesh:
+    """A mesh of straight two-node cells: ``points`` (N, 3) in m, ``cells`` (E, 2) node indices.
+
+    Rank 0 provides the arrays; other ranks may pass empty ones. Each cell is oriented from its
+    first to its second node, which fixes the sign of the tangent.
+    """
+    x = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    if comm.rank != 0:
+        x, c = np.zeros((0, 3)), np.zeros((0, 2), dtype=np.int64)
+    element = basix.ufl.element("Lagrange", "interval", 1, shape=(3,))
+    kwargs = {"partitioner": partitioner} if partitioner is not None else {}
+    return dolfinx.mesh.create_mesh(comm, cells=c, x=x, e=element, **kwargs)
+
+
+def straight_beam_mesh(
+    comm: MPI.Comm, length: float, n_cells: int, direction=(1.0, 0.0, 0.0), origin=(0.0, 0.0, 0.0)
+) -> dolfinx.mesh.Mesh:
+    """A straight beam of ``length`` (m) split into ``n_cells`` equal cells."""
+    s = np.linspace(0.0, length, n_cells + 1)
+    d = np.asarray(direction, dtype=float)
+    x = np.asarray(origin, dtype=float) + s[:, None] * (d / np.linalg.norm(d))
+    cells = np.column_stack([np.arange(n_cells), np.arange(1, n_cells + 1)])
+    return polyline_mesh(comm, x, cells)
+
+
+def beam_space(mesh: dolfinx.mesh.Mesh) -> fem.FunctionSpace:
+    """Blocked P1 space of (u, θ) ∈ R⁶ per node."""
+    return fem.functionspace(mesh, ("Lagrange", 1, (6,)))
+
+
+def node_to_block(V: fem.FunctionSpace) -> npt.NDArray[np.int32]:
+    """Map local geometry node index → local dof block index (built cellwise, so exact)."""
+    mesh = V.mesh
+    gdofs = mesh.geometry.dofmaps[0]
+    out = np.full(mesh.geometry.x.shape[0], -1, dtype=np.int32)
+    out[gdofs] = V.dofmap.list
+    return out
+
+
+def input_to_block(V: fem.FunctionSpace) -> npt.NDArray[np.int32]:
+    """Map input point index (row of ``points`` given to ``polyline_mesh``) → local dof block.
+
+    Entries for input points not present on this rank are −1.
+    """
+    mesh = V.mesh
+    igi = np.asarray(mesh.geometry.input_global_indices, dtype=np.int64)
+    n_input = mesh.comm.allreduce(int(igi.max(initial=-1)) + 1, op=MPI.MAX)
+    out = np.full(n_input, -1, dtype=np.int32)
+    out[igi] = node_to_block(V)[: len(igi)]
+    return out

@@ -1,0 +1,91 @@
+"""Result files written as a run goes: XDMF time series of the beam fields for ParaView."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+import strand  # noqa: F401
+
+import dolfinx  # isort: skip
+from dolfinx import fem  # isort: skip
+
+from forms import ReissnerBeam  # isort: skip
+
+__all__ = ["FieldWriter", "cell_function", "section_force_values"]
+
+
+def cell_function(mesh: dolfinx.mesh.Mesh, values_by_input_cell: npt.ArrayLike, name: str):
+    """DG0 function from values given per input cell (row of the ``cells`` array of the mesh)."""
+    D0 = fem.functionspace(mesh, ("DG", 0))
+    f = fem.Function(D0, name=name)
+    n_local = mesh.topology.index_map(1).size_local + mesh.topology.index_map(1).num_ghosts
+    original = np.asarray(mesh.topology.original_cell_index)[:n_local]
+    dofs = D0.dofmap.list[:n_local, 0]
+    f.x.array[dofs] = np.asarray(values_by_input_cell, dtype=np.float64)[original]
+    return f
+
+
+class FieldWriter:
+    """XDMF time series of displacement u (m), rotation vector θ (rad) and section forces.
+
+    Section forces are cell-wise, in the section frame: ``force`` = (N, V2, V3) in N and
+    ``moment`` = (torque, M2, M3) in N m; ``axial_force`` = N alone. Constant cell data (wire and
+    layer ids, ...) given as DG0 functions in ``cell_data`` are written with every step so that
+    ParaView can threshold on them at any time.
+    """
+
+    def __init__(self, path: str | Path, beam: ReissnerBeam, cell_data=()):
+        self.path = Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        w = beam.w
+        mesh = w.function_space.mesh
+        U = fem.functionspace(mesh, ("Lagrange", 1, (3,)))
+        D3 = fem.functionspace(mesh, ("DG", 0, (3,)))
+        D1 = fem.functionspace(mesh, ("DG", 0))
+        self.u = fem.Function(U, name="displacement")
+        self.theta = fem.Function(U, name="rotation")
+        self.force = fem.Function(D3, name="force")
+        self.moment = fem.Function(D3, name="moment")
+        self.axial = fem.Function(D1, name="axial_force")
+        pts_u = U.element.interpolation_points
+        pts_d = D3.element.interpolation_points
+        self._exprs = [
+            (self.u, fem.Expression(beam.u, pts_u)),
+            (self.theta, fem.Expression(beam.theta, pts_u)),
+            (self.force, fem.Expression(beam.N, pts_d)),
+            (self.moment, fem.Expression(beam.M, pts_d)),
+            (self.axial, fem.Expression(beam.N[0], D1.element.interpolation_points)),
+        ]
+        self.cell_data = list(cell_data)
+        self._file = dolfinx.io.XDMFFile(mesh.comm, str(self.path), "w")
+        self._file.write_mesh(mesh)
+
+    def write(self, t: float) -> None:
+        """Evaluate and append every field at time (load) ``t``; flushed to disk at once."""
+        for f, e in self._exprs:
+            f.interpolate(e)
+        for f in [f for f, _ in self._exprs] + self.cell_data:
+            self._file.write_function(f, t)
+        self._file.flush()
+
+    def close(self) -> None:
+        self._file.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def section_force_values(beam: ReissnerBeam) -> np.ndarray:
+    """Cell-wise (N, V2, V3, Mt, M2, M3) as a (cells, 6) array in the local cell order."""
+    mesh = beam.w.function_space.mesh
+    D6 = fem.functionspace(mesh, ("DG", 0, (6,)))
+    f = fem.Function(D6)
+    f.interpolate(fem.Expression(beam.section_forces(), D6.element.interpolation_points))
+    n = mesh.topology.index_map(1).size_local
+    return f.x.array.reshape(-1, 6)[D6.dofmap.list[:n, 0]]

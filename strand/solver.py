@@ -1,0 +1,404 @@
+"""Newton's method (PETSc SNES, MUMPS LU) and load stepping for UFL beams plus pair terms.
+
+The beam lives in UFL; contact pairs, penalty links and nodal loads do not. They enter through the
+``PairTerms`` protocol: each term set owns a fixed array of node stencils and returns, for the current
+state, all its residual vectors and tangent blocks at once (numpy arrays). The solver
+
+* extends the sparsity pattern of the UFL Jacobian with the stencils, once,
+* adds the stencil residuals into the ghosted residual vector and the blocks into the matrix that
+  dolfinx assembled (one ``setValuesBlockedLocalRCV`` call per term set),
+* masks Dirichlet dofs, and
+* keeps the last converged state so that a failed step can be rolled back.
+
+``dolfinx.fem.petsc.NonlinearProblem`` has no argument for a user-built matrix (it would allocate a
+second, unused Jacobian), so this module drives a ``PETSc.SNES`` directly with the same dolfinx
+assembly helpers.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+import strand  # noqa: F401  (loads the dolfinx wheel's libraries first)
+
+import dolfinx  # isort: skip
+import dolfinx.fem.petsc as fem_petsc  # isort: skip
+import ufl  # isort: skip
+from dolfinx import fem  # isort: skip
+from petsc4py import PETSc  # isort: skip
+
+__all__ = [
+    "PairTerms",
+    "NodalLoad",
+    "NewtonOptions",
+    "NewtonResult",
+    "NewtonSolver",
+    "LoadStepper",
+    "StepRecord",
+    "LoadStepFailure",
+]
+
+
+class PairTerms(Protocol):
+    """Residual and tangent contributions assembled outside UFL, e.g. contact pairs.
+
+    ``stencils`` is a fixed (P, k) int32 array of local dof-block (node) indices: term p couples
+    the nodes ``stencils[p]``. ``evaluate(w)`` receives the local nodal values (n_blocks, 6) of the
+    current iterate (ghosts included) and returns the residual contributions f (P, 6k) and, when
+    ``jacobian`` is true, the tangent blocks K = ∂f/∂w (P, 6k, 6k), or None for state-independent
+    terms. Each rank returns each term once. ``commit``/``rollback`` accept or discard the history
+    built since the last converged step.
+    """
+
+    stencils: npt.NDArray[np.int32]
+
+    def evaluate(
+        self, w: npt.NDArray[np.float64], jacobian: bool
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64] | None]: ...
+
+    def commit(self) -> None: ...
+
+    def rollback(self) -> None: ...
+
+
+class NodalLoad:
+    """External nodal forces/moments F (n, 6) on nodes ``blocks`` (n,), scaled by ``factor``.
+
+    Its residual contribution is −factor·F (the residual is internal minus external forces).
+    """
+
+    def __init__(self, blocks: npt.ArrayLike, values: npt.ArrayLike, factor: float = 0.0):
+        self.stencils = np.asarray(blocks, dtype=np.int32).reshape(-1, 1)
+        self.values = np.asarray(values, dtype=np.float64).reshape(-1, 6)
+        if len(self.values) != len(self.stencils):
+            raise ValueError("NodalLoad: one 6-vector of forces/moments per node is needed")
+        self.factor = factor
+
+    def evaluate(self, w, jacobian):
+        return -self.factor * self.values, None
+
+    def commit(self) -> None:
+        pass
+
+    def rollback(self) -> None:
+        pass
+
+
+@dataclass
+class NewtonOptions:
+    """Newton settings. Residual norms are in N (and N m) for strand's SI units."""
+
+    atol: float = 1e-7
+    rtol: float = 1e-9
+    #: relative size of the Newton correction ||δw|| / ||w|| taken as converged: it ends solves
+    #: that reached the round-off floor of the residual, which grows with the forces carried.
+    stol: float = 1e-10
+    max_it: int = 25
+    linesearch: str = "basic"
+    petsc: dict = field(
+        default_factory=dict
+    )  # extra PETSc options, e.g. {"mat_mumps_icntl_14": 80}
+
+
+@dataclass
+class NewtonResult:
+    converged: bool
+    iterations: int
+    reason: str
+    residuals: list[float]
+    seconds: float
+
+
+_REASONS = {
+    v: k
+    for k, v in vars(PETSc.SNES.ConvergedReason).items()
+    if isinstance(v, int) and not k.startswith("_")
+}
+
+
+class NewtonSolver:
+    """Newton solver for ``F(w; v) + Σ pair terms = 0`` with Dirichlet conditions ``bcs``.
+
+    Args:
+        F: residual form (internal minus external virtual work), linear in the test function.
+        w: the unknown; updated in place by ``solve``.
+        bcs: Dirichlet conditions on ``w.function_space``.
+        terms: ``PairTerms`` objects (contact, links, nodal loads).
+        J: Jacobian form; default ``ufl.derivative(F, w)``.
+        options: ``NewtonOptions``.
+        prefix: PETSc options prefix of this solver.
+        monitor: called as ``monitor(iteration, residual_norm)`` at every Newton iteration.
+    """
+
+    def __init__(
+        self,
+        F: ufl.Form,
+        w: fem.Function,
+        bcs: Sequence[fem.DirichletBC] = (),
+        terms: Sequence[PairTerms] = (),
+        J: ufl.Form | None = None,
+        options: NewtonOptions | None = None,
+        prefix: str = "strand_",
+        monitor: Callable[[int, float], None] | None = None,
+    ):
+        self.w = w
+        self.V = w.function_space
+        self.bcs = list(bcs)
+        self.terms = list(terms)
+        self.options = options or NewtonOptions()
+        self.monitor = monitor
+        comm = self.V.mesh.comm
+        if self.V.dofmap.index_map_bs != 6:
+            raise ValueError("NewtonSolver expects a blocked (6,)-valued space (u, θ) per node")
+
+        self.F = fem.form(F)
+        self.J = fem.form(J if J is not None else ufl.derivative(F, w))
+
+        # Jacobian with the beam's sparsity pattern extended by every stencil, primed once so that
+        # the first assembly does not squeeze the extra slots out (PETSc error 63 otherwise).
+        sp = fem.create_sparsity_pattern(self.J)
+        for t in self.terms:
+            _insert_stencils(sp, np.asarray(t.stencils, dtype=np.int32))
+        sp.finalize()
+        self.A = dolfinx.cpp.la.petsc.create_matrix(comm, sp, None)
+        self.A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, True)
+        cols, offsets = sp.graph
+        self.A.setValuesBlockedLocalCSR(offsets.astype(np.int32), cols, np.zeros(len(cols) * 36))
+        self.A.assemble()
+
+        self.b = fem_petsc.create_vector(self.V)
+        self.x = fem_petsc.create_vector(self.V)
+
+        # Dirichlet mask over local dofs (ghosts included): contributions there are dropped.
+        n_local = self.V.dofmap.index_map.size_local + self.V.dofmap.index_map.num_ghosts
+        self._bc_mask = np.zeros(6 * n_local, dtype=bool)
+        for bc in self.bcs:
+            dofs, _ = bc.dof_indices()
+            self._bc_mask[dofs] = True
+
+        self.snes = PETSc.SNES().create(comm)
+        self.snes.setOptionsPrefix(prefix)
+        opts = PETSc.Options()
+        settings = {
+            "snes_type": "newtonls",
+            "snes_linesearch_type": self.options.linesearch,
+            "snes_atol": self.options.atol,
+            "snes_rtol": self.options.rtol,
+            "snes_stol": self.options.stol,
+            "snes_max_it": self.options.max_it,
+            "snes_divergence_tolerance": 1e300,  # never stop on residual growth
+            "ksp_type": "preonly",
+            "pc_type": "lu",
+            "pc_factor_mat_solver_type": "mumps",
+            **self.options.petsc,
+        }
+        for k, v in settings.items():
+            opts[f"{prefix}{k}"] = v
+        self.snes.setFunction(self._residual, self.b)
+        self.snes.setJacobian(self._jacobian, self.A, self.A)
+        self.snes.setMonitor(self._monitor)
+        self.snes.setFromOptions()
+        self._residuals: list[float] = []
+        self._cache: tuple[np.ndarray, list] | None = None
+        self._saved = w.x.array.copy()
+        self.timings = {"residual": 0.0, "jacobian": 0.0, "terms": 0.0, "solve": 0.0}
+
+    # -- pair terms ------------------------------------------------------------------------------
+    def _masked_terms(self, jacobian: bool):
+        """Evaluate every term set at the current w; mask Dirichlet dofs (cached per state)."""
+        wl = self.w.x.array
+        if self._cache is not None and np.array_equal(self._cache[0], wl):
+            if not jacobian or all(K is not None or f is None for _, f, K in self._cache[1]):
+                return self._cache[1]
+        t0 = time.perf_counter()
+        wn = wl.reshape(-1, 6)
+        out = []
+        for t in self.terms:
+            f, K = t.evaluate(wn, jacobian)
+            st = np.asarray(t.stencils)
+            dofs = (6 * st[:, :, None] + np.arange(6)).reshape(st.shape[0], 6 * st.shape[1])
+            m = self._bc_mask[dofs]
+            f = np.where(m, 0.0, f)
+            if K is not None:
+                K = np.where(m[:, :, None] | m[:, None, :], 0.0, K)
+            out.append((st, f, K))
+        self._cache = (wl.copy(), out)
+        self.timings["terms"] += time.perf_counter() - t0
+        return out
+
+    # -- SNES callbacks --------------------------------------------------------------------------
+    def _residual(self, snes, x, b):
+        t0 = time.perf_counter()
+        x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        fem_petsc.assign(x, self.w)
+        with b.localForm() as bl:
+            bl.set(0.0)
+            arr = bl.array_w.reshape(-1, 6)
+            for st, f, _ in self._masked_terms(jacobian=True):
+                np.add.at(arr, st, f.reshape(st.shape[0], st.shape[1], 6))
+        fem_petsc.assemble_vector(b, self.F)
+        fem_petsc.apply_lifting(b, [self.J], bcs=[self.bcs], x0=[x], alpha=-1.0)
+        b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        fem_petsc.set_bc(b, self.bcs, x0=x, alpha=-1.0)
+        b.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        self.timings["residual"] += time.perf_counter() - t0
+
+    def _jacobian(self, snes, x, J, P):
+        t0 = time.perf_counter()
+        x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        fem_petsc.assign(x, self.w)
+        J.zeroEntries()
+        fem_petsc.assemble_matrix(J, self.J, self.bcs, diag=1.0)
+        J.assemble(PETSc.Mat.AssemblyType.FLUSH)  # the Dirichlet diagonal was INSERTed
+        for st, _, K in self._masked_terms(jacobian=True):
+            if K is not None and len(st):
+                J.setValuesBlockedLocalRCV(st, st, K, addv=PETSc.InsertMode.ADD_VALUES)
+        J.assemble()
+        self.timings["jacobian"] += time.perf_counter() - t0
+
+    def _monitor(self, snes, its, norm):
+        self._residuals.append(float(norm))
+        if self.monitor is not None:
+            self.monitor(its, float(norm))
+
+    # -- public API ------------------------------------------------------------------------------
+    def solve(self) -> NewtonResult:
+        """Run Newton from the current ``w``. On failure ``w`` holds the last iterate."""
+        self._residuals = []
+        self._cache = None
+        t0 = time.perf_counter()
+        fem_petsc.assign(self.w, self.x)
+        self.snes.solve(None, self.x)
+        self.x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        fem_petsc.assign(self.x, self.w)
+        reason = self.snes.getConvergedReason()
+        converged = reason > 0 and bool(np.all(np.isfinite(self.w.x.array)))
+        dt = time.perf_counter() - t0
+        self.timings["solve"] += dt
+        return NewtonResult(
+            converged,
+            self.snes.getIterationNumber(),
+            _REASONS.get(reason, str(reason)),
+            list(self._residuals),
+            dt,
+        )
+
+    def commit(self) -> None:
+        """Accept the current state: it becomes the one ``rollback`` returns to."""
+        self._saved[:] = self.w.x.array
+        for t in self.terms:
+            t.commit()
+
+    def rollback(self) -> None:
+        """Return to the last committed state (unknowns and term histories)."""
+        self.w.x.array[:] = self._saved
+        for t in self.terms:
+            t.rollback()
+        self._cache = None
+
+
+def _insert_stencils(sp, stencils: npt.NDArray[np.int32]) -> None:
+    """Add the k×k node couplings of every stencil row to a dolfinx sparsity pattern (set-up only)."""
+    if stencils.shape[1] < 2:
+        return
+    for row in np.unique(np.sort(stencils, axis=1), axis=0):
+        sp.insert(row, row)
+
+
+@dataclass
+class StepRecord:
+    """One converged load step."""
+
+    stage: str
+    load: float
+    iterations: int
+    residuals: list[float]
+    seconds: float
+    cuts: int
+
+
+class LoadStepFailure(RuntimeError):
+    """A load step did not converge even after the allowed step cuts."""
+
+
+class LoadStepper:
+    """Adaptive load stepping: grow the step after easy solves, halve and retry after failures.
+
+    Args:
+        solver: the ``NewtonSolver``.
+        first_step: initial load increment (in the units of the load parameter).
+        min_step: smallest increment tried before giving up.
+        max_step: largest increment (default: unbounded).
+        growth: factor applied to the increment after a solve of at most ``easy_iterations``.
+        on_step: called with each ``StepRecord`` after the step is committed (write outputs there).
+    """
+
+    def __init__(
+        self,
+        solver: NewtonSolver,
+        first_step: float,
+        min_step: float,
+        max_step: float | None = None,
+        growth: float = 1.5,
+        easy_iterations: int = 6,
+        on_step: Callable[[StepRecord], None] | None = None,
+    ):
+        if not (0 < min_step <= first_step):
+            raise ValueError("LoadStepper: need 0 < min_step <= first_step")
+        self.solver = solver
+        self.step = first_step
+        self.min_step = min_step
+        self.max_step = max_step if max_step is not None else np.inf
+        self.growth = growth
+        self.easy_iterations = easy_iterations
+        self.on_step = on_step
+        self.history: list[StepRecord] = []
+
+    def ramp(
+        self, set_load: Callable[[float], None], start: float, end: float, stage: str = "load"
+    ):
+        """Move the load parameter from ``start`` to ``end``; returns the records of this ramp."""
+        records = []
+        sign = 1.0 if end >= start else -1.0
+        current = start
+        step = min(self.step, self.max_step)
+        cuts = 0
+        while sign * (end - current) > 1e-12 * max(1.0, abs(end)):
+            trial = current + sign * min(step, abs(end - current))
+            set_load(trial)
+            result = self.solver.solve()
+            if result.converged:
+                self.solver.commit()
+                rec = StepRecord(
+                    stage, trial, result.iterations, result.residuals, result.seconds, cuts
+                )
+                records.append(rec)
+                self.history.append(rec)
+                if self.on_step is not None:
+                    self.on_step(rec)
+                current = trial
+                if result.iterations <= self.easy_iterations:
+                    step = min(step * self.growth, self.max_step)
+                cuts = 0
+            else:
+                self.solver.rollback()
+                set_load(current)
+                step /= 2
+                cuts += 1
+                if step < self.min_step:
+                    last = result.residuals[-1] if result.residuals else float("nan")
+                    raise LoadStepFailure(
+                        f"{stage}: no convergence from {current:.6g} towards {trial:.6g} "
+                        f"after {cuts} step cuts (increment now {step:.3g} < min_step "
+                        f"{self.min_step:.3g}; last Newton: {result.reason}, "
+                        f"{result.iterations} iterations, residual {last:.3e}). "
+                        "The state at the last converged load is kept and was written."
+                    )
+        self.step = step
+        return records

@@ -20,6 +20,8 @@
 # +
 import strand  # noqa: F401  (loads the dolfinx wheel's libraries before mpi4py/petsc4py)
 
+# isort: split
+
 from pathlib import Path
 
 import numpy as np

@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 import ufl
-from beam_cases import cantilever, section_stiffness
 from dolfinx import fem
 from mpi4py import MPI
 from scipy.spatial.transform import Rotation
 
+from beam_cases import cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, node_to_block, polyline_mesh
 from strand.output import section_force_values

@@ -2,10 +2,10 @@
 
 import numpy as np
 import pytest
-from beam_cases import cantilever, section_stiffness
 from dolfinx import fem
 from mpi4py import MPI
 
+from beam_cases import cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, input_to_block, polyline_mesh
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad

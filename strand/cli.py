@@ -1,22 +1,108 @@
-"""Command line: ``strand run`` (for now the roll-up demo; the Cardinal case comes with issue 5)."""
+"""strand's command line.
+
+strand run  [case.toml]   the main job (for now the roll-up demo; the Cardinal case comes next)
+strand mesh [case.toml]   build the strand mesh and contact pairs, print the table, draw them
+"""
 
 from __future__ import annotations
 
 import argparse
 import runpy
+import sys
+import time
 from pathlib import Path
+
+import numpy as np
 
 DEMOS = Path(__file__).resolve().parents[1] / "demos"
 
 
+def mesh_table(geometry) -> str:
+    """The mesh table (per layer) and the pair counts (per interface and type), as text."""
+    g = geometry
+    lengths = g.cell_lengths()
+    lines = [
+        f"{g.cable.name}: L = {g.length * 1e3:g} mm, h_max = {g.h_max * 1e3:g} mm, "
+        f"{len(g.wire_layer)} wires, {len(g.cells)} elements, {len(g.points)} nodes",
+        "",
+        "layer  wires  elements/wire  mean length (mm)  max length (mm)",
+    ]
+    for i, lay in enumerate(g.cable.layers):
+        m = g.cell_layer == i
+        lines.append(
+            f"{'core' if i == 0 else i:>5}  {lay.wires:>5}  {m.sum() / lay.wires:>13.1f}  "
+            f"{lengths[m].mean() * 1e3:>16.3f}  {lengths[m].max() * 1e3:>15.3f}"
+        )
+    lines += ["", "interface  type      pairs  closed form  max |gap| (m)"]
+    p, gaps = g.pairs, g.gaps()
+    for i in range(len(g.cable.layers) - 1):
+        for kind, name in ((1, "line"), (0, "crossing")):
+            m = (p.interface == i) & (p.kind == kind)
+            if not m.any():
+                continue
+            if kind == 0:
+                a, b = g.cable.layers[i], g.cable.layers[i + 1]
+                closed = f"{a.wires * b.wires * g.length * (1 / a.pitch + 1 / b.pitch):11.1f}"
+            else:
+                closed = f"{'-':>11}"
+            lines.append(
+                f"{i:>4}|{i + 1:<4}  {name:<8}  {m.sum():>5}  {closed}  {np.abs(gaps[m]).max():.1e}"
+            )
+    lines.append(f"{'all':<9}  {'':<8}  {len(p):>5}")
+    return "\n".join(lines)
+
+
+def _mesh(args) -> int:
+    from .case import load_case
+    from .geometry import build_geometry
+
+    case = load_case(args.case)
+    t0 = time.perf_counter()
+    geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
+    t_geo = time.perf_counter() - t0
+    from .mesh import cable_mesh, write_centrelines
+
+    t0 = time.perf_counter()
+    cable_mesh(geometry)
+    t_mesh = time.perf_counter() - t0
+    print(mesh_table(geometry))
+    print(f"\nbuilt in {t_geo:.3f} s (geometry and pairs) + {t_mesh:.3f} s (dolfinx mesh)")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    write_centrelines(geometry, out / "centrelines.vtu")
+    if not args.no_picture:
+        from .plots import strand_picture
+
+        print("picture:", strand_picture(geometry, out / "mesh.png"))
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="strand", description=__doc__)
+    parser = argparse.ArgumentParser(
+        prog="strand", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run the main job (currently: the cantilever roll-up demo)")
     run.add_argument("case", nargs="?", help="case file (TOML); not used yet")
+    mesh = sub.add_parser(
+        "mesh", help="build the strand mesh and contact pairs; print and draw them"
+    )
+    mesh.add_argument(
+        "case", nargs="?", help="case file (TOML) or cable file; default: Cardinal, 1 m"
+    )
+    mesh.add_argument("--out", default="results/mesh", help="output folder (default: %(default)s)")
+    mesh.add_argument("--no-picture", action="store_true", help="skip the PNG")
     args = parser.parse_args(argv)
-    if args.command == "run":
+    from .cable import CableError
+    from .case import CaseError
+
+    try:
+        if args.command == "mesh":
+            return _mesh(args)
         if args.case:
-            parser.error("case files arrive with the Cardinal case; run without one for now")
+            parser.error("case files arrive with the Cardinal run; run without one for now")
         runpy.run_path(str(DEMOS / "demo_cantilever_rollup.py"), run_name="__main__")
-    return 0
+        return 0
+    except (CableError, CaseError) as e:
+        print(f"strand: error: {e}", file=sys.stderr)
+        return 2

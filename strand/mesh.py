@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import numpy.typing as npt
 
@@ -12,7 +14,18 @@ import dolfinx  # isort: skip
 from dolfinx import fem  # isort: skip
 from mpi4py import MPI  # isort: skip
 
-__all__ = ["polyline_mesh", "straight_beam_mesh", "beam_space", "node_to_block", "input_to_block"]
+from .geometry import StrandGeometry  # isort: skip
+
+__all__ = [
+    "polyline_mesh",
+    "straight_beam_mesh",
+    "beam_space",
+    "node_to_block",
+    "input_to_block",
+    "CableMesh",
+    "cable_mesh",
+    "write_centrelines",
+]
 
 
 def polyline_mesh(
@@ -68,3 +81,50 @@ def input_to_block(V: fem.FunctionSpace) -> npt.NDArray[np.int32]:
     out = np.full(n_input, -1, dtype=np.int32)
     out[igi] = node_to_block(V)[: len(igi)]
     return out
+
+
+@dataclass
+class CableMesh:
+    """A strand as one dolfinx mesh: cells tagged by wire and layer, pairs by dof block.
+
+    ``wire_tags``/``layer_tags`` are cell ``MeshTags`` (values: wire id, layer id with 0 = core).
+    """
+
+    geometry: StrandGeometry
+    mesh: dolfinx.mesh.Mesh
+    wire_tags: dolfinx.mesh.MeshTags
+    layer_tags: dolfinx.mesh.MeshTags
+
+    def pair_blocks(self, V: fem.FunctionSpace) -> npt.NDArray[np.int32]:
+        """(P, 2) local dof blocks of the contact pairs' nodes (a, b), robust to node reordering."""
+        i2b = input_to_block(V)
+        p = self.geometry.pairs
+        return np.column_stack([i2b[p.a], i2b[p.b]]).astype(np.int32)
+
+    def point_blocks(self, V: fem.FunctionSpace, points: npt.ArrayLike) -> npt.NDArray[np.int32]:
+        """Local dof blocks of input points (rows of ``geometry.points``)."""
+        return input_to_block(V)[np.asarray(points)]
+
+
+def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD) -> CableMesh:
+    """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays)."""
+    mesh = polyline_mesh(comm, geometry.points, geometry.cells)
+    n_local = mesh.topology.index_map(1).size_local
+    cells = np.arange(n_local, dtype=np.int32)
+    original = np.asarray(mesh.topology.original_cell_index)[:n_local]
+    wire = dolfinx.mesh.meshtags(mesh, 1, cells, geometry.cell_wire[original].astype(np.int32))
+    layer = dolfinx.mesh.meshtags(mesh, 1, cells, geometry.cell_layer[original].astype(np.int32))
+    wire.name, layer.name = "wire", "layer"
+    return CableMesh(geometry, mesh, wire, layer)
+
+
+def write_centrelines(geometry: StrandGeometry, path) -> None:
+    """Export the wire centrelines (polylines with wire and layer cell data) with meshio, for
+    other tools; the format follows the file suffix (.vtu, .msh, .xdmf, ...)."""
+    import meshio
+
+    meshio.Mesh(
+        geometry.points,
+        [("line", geometry.cells)],
+        cell_data={"wire": [geometry.cell_wire], "layer": [geometry.cell_layer]},
+    ).write(str(path))

@@ -46,3 +46,83 @@ def save(plotter, path: str | Path) -> Path:
     plotter.screenshot(str(path))
     plotter.close()
     return path
+
+
+LAYER_COLOURS = ["#4d4d4d", "#8c6d31", "#3182bd", "#31a354", "#e6550d", "#756bb1", "#d6616b"]
+
+
+def strand_picture(geometry, path, step: float = 0.03, section_z: float | None = None) -> Path:
+    """A PNG with the strand as tubes coloured by layer (cut away like a staircase: layer i is
+    drawn over (n_layers − i) × ``step`` m) and a cross-section at ``section_z`` with the wires and
+    the contact points within ±3 mm of it."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pyvista
+
+    g = geometry
+    n_layers = len(g.cable.layers)
+    plotter = offscreen_plotter(window_size=(1400, 800))
+    for i, lay in enumerate(g.cable.layers):
+        zmax = min(g.length, (n_layers - i) * step)
+        for w in np.flatnonzero(g.wire_layer == i):
+            pts = g.points[g.wire_offsets[w] : g.wire_offsets[w + 1]]
+            pts = pts[pts[:, 2] <= zmax + 1e-12]
+            if len(pts) < 2:
+                continue
+            line = pyvista.lines_from_points(pts)
+            plotter.add_mesh(
+                line.tube(radius=lay.wire.diameter / 2, n_sides=16), color=LAYER_COLOURS[i % 7]
+            )
+    plotter.view_vector(
+        (1.0, -0.4, 0.35), viewup=(-1.0, 0.0, 0.0)
+    )  # strand axis across the picture
+    plotter.reset_camera()
+    plotter.camera.zoom(1.4)
+    image = plotter.screenshot(return_img=True)
+    plotter.close()
+
+    fig, (ax3d, ax) = plt.subplots(1, 2, figsize=(14, 6.5), gridspec_kw={"width_ratios": [1.6, 1]})
+    ax3d.imshow(image)
+    ax3d.set_axis_off()
+    ax3d.set_title(f"{g.cable.name}: {len(g.cells)} elements, {len(g.pairs)} contact pairs")
+    z0 = g.length / 2 if section_z is None else section_z
+    for w, lay_id in enumerate(g.wire_layer):
+        lay = g.cable.layers[lay_id]
+        phi = g.wire_phase[w] + lay.angular_rate * z0
+        centre = lay.radius * np.array([np.cos(phi), np.sin(phi)]) * 1e3
+        ax.add_patch(
+            plt.Circle(
+                centre,
+                lay.wire.diameter / 2e-3,
+                fc=LAYER_COLOURS[lay_id % 7],
+                alpha=0.35,
+                ec="k",
+                lw=0.5,
+            )
+        )
+    p = g.pairs
+    contact = g.points[p.a] + p.radius_a[:, None] * p.normal
+    near = np.abs(contact[:, 2] - z0) < 3e-3
+    for i in range(n_layers - 1):
+        m = near & (p.interface == i)
+        ax.scatter(
+            *(contact[m, :2].T * 1e3),
+            s=14,
+            label=f"{i}|{i + 1} ({'line' if i == 0 else 'crossing'})",
+        )
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(f"section z = {z0 * 1e3:g} mm, contact points within ±3 mm")
+    ax.legend(loc="upper right", fontsize=8)
+    lim = g.cable.outer_diameter / 2e-3 * 1.15
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path

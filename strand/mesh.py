@@ -25,6 +25,8 @@ __all__ = [
     "CableMesh",
     "cable_mesh",
     "write_centrelines",
+    "geometry_to_gmsh",
+    "mesh_from_gmsh",
 ]
 
 
@@ -128,3 +130,40 @@ def write_centrelines(geometry: StrandGeometry, path) -> None:
         [("line", geometry.cells)],
         cell_data={"wire": [geometry.cell_wire], "layer": [geometry.cell_layer]},
     ).write(str(path))
+
+
+def geometry_to_gmsh(geometry: StrandGeometry, model=None):
+    """Put the strand's nodes and cells into a gmsh model as one curve per wire, meshed exactly
+    as ``geometry`` (gmsh node tag = input point index + 1), with a physical group per wire
+    (tag = wire id + 1, name "wire <w> layer <l>"). Returns the model."""
+    import gmsh
+
+    if model is None:
+        if not gmsh.isInitialized():
+            gmsh.initialize(["-v", "0"])
+        model = gmsh.model
+    model.add(geometry.cable.name)
+    for w, lay in enumerate(geometry.wire_layer):
+        s, e = geometry.wire_offsets[w], geometry.wire_offsets[w + 1]
+        model.addDiscreteEntity(1, w + 1)
+        model.mesh.addNodes(1, w + 1, np.arange(s, e) + 1, geometry.points[s:e].ravel())
+        cells = geometry.cells[geometry.cell_wire == w]
+        model.mesh.addElementsByType(w + 1, 1, [], (cells + 1).ravel())
+        model.addPhysicalGroup(1, [w + 1], w + 1, name=f"wire {w} layer {lay}")
+    return model
+
+
+def mesh_from_gmsh(model, comm: MPI.Comm = MPI.COMM_WORLD, rank: int = 0):
+    """A user's 1D gmsh model (one physical group per wire) as a dolfinx mesh.
+
+    Returns (mesh, wire_tags) with wire id = physical tag − 1. The mesh's input point index is the
+    gmsh node tag − 1, so ``input_to_block`` maps gmsh nodes to dof blocks as for strand's own
+    meshes.
+    """
+    import dolfinx.io.gmsh
+
+    data = dolfinx.io.gmsh.model_to_mesh(model, comm, rank, gdim=3)
+    tags = data.cell_tags
+    wire = dolfinx.mesh.meshtags(data.mesh, 1, tags.indices, tags.values - 1)
+    wire.name = "wire"
+    return data.mesh, wire

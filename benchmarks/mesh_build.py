@@ -1,0 +1,44 @@
+"""Time to build the Cardinal strand (geometry, pairs, dolfinx mesh, dof blocks of the pairs).
+
+Run: .venv/bin/python benchmarks/mesh_build.py [case.toml]. Target: under 5 s for Cardinal, 1 m, 4 mm.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import sys
+import time
+
+from mpi4py import MPI
+
+from strand.case import load_case
+from strand.cli import mesh_table
+from strand.geometry import build_geometry
+from strand.mesh import beam_space, cable_mesh
+
+
+def main(case_file=None, repeats: int = 5) -> None:
+    case = load_case(case_file)
+    rows = []
+    for _ in range(repeats):
+        t = [time.perf_counter()]
+        g = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
+        t.append(time.perf_counter())
+        cm = cable_mesh(g, MPI.COMM_WORLD)
+        t.append(time.perf_counter())
+        cm.pair_blocks(beam_space(cm.mesh))
+        t.append(time.perf_counter())
+        rows.append([t[i + 1] - t[i] for i in range(3)])
+    best = [min(c) for c in zip(*rows, strict=True)]
+    print(mesh_table(g))
+    print()
+    print(f"best of {repeats}           time (s)")
+    print(f"geometry + pairs (numpy)  {best[0]:.4f}")
+    print(f"dolfinx mesh + tags       {best[1]:.4f}")
+    print(f"space + pair dof blocks   {best[2]:.4f}")
+    print(f"total                     {sum(best):.4f}   (target < 5 s)")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else None)

@@ -210,17 +210,19 @@ class NewtonSolver:
         self.timings = {"residual": 0.0, "jacobian": 0.0, "terms": 0.0, "solve": 0.0}
 
     # -- pair terms ------------------------------------------------------------------------------
-    def _masked_terms(self, jacobian: bool):
-        """Evaluate every term set at the current w; mask Dirichlet dofs (cached per state)."""
+    def _masked_terms(self):
+        """Residuals and tangents of every term set at the current w, Dirichlet dofs masked.
+
+        Evaluated once per state: SNES asks for the residual, then the Jacobian at the same w.
+        """
         wl = self.w.x.array
         if self._cache is not None and np.array_equal(self._cache[0], wl):
-            if not jacobian or all(K is not None or f is None for _, f, K in self._cache[1]):
-                return self._cache[1]
+            return self._cache[1]
         t0 = time.perf_counter()
         wn = wl.reshape(-1, 6)
         out = []
         for t in self.terms:
-            f, K = t.evaluate(wn, jacobian)
+            f, K = t.evaluate(wn, True)
             st = np.asarray(t.stencils)
             dofs = (6 * st[:, :, None] + np.arange(6)).reshape(st.shape[0], 6 * st.shape[1])
             m = self._bc_mask[dofs]
@@ -240,7 +242,7 @@ class NewtonSolver:
         with b.localForm() as bl:
             bl.set(0.0)
             arr = bl.array_w.reshape(-1, 6)
-            for st, f, _ in self._masked_terms(jacobian=True):
+            for st, f, _ in self._masked_terms():
                 np.add.at(arr, st, f.reshape(st.shape[0], st.shape[1], 6))
         fem_petsc.assemble_vector(b, self.F)
         fem_petsc.apply_lifting(b, [self.J], bcs=[self.bcs], x0=[x], alpha=-1.0)
@@ -256,7 +258,7 @@ class NewtonSolver:
         J.zeroEntries()
         fem_petsc.assemble_matrix(J, self.J, self.bcs, diag=1.0)
         J.assemble(PETSc.Mat.AssemblyType.FLUSH)  # the Dirichlet diagonal was INSERTed
-        for st, _, K in self._masked_terms(jacobian=True):
+        for st, _, K in self._masked_terms():
             if K is not None and len(st):
                 J.setValuesBlockedLocalRCV(st, st, K, addv=PETSc.InsertMode.ADD_VALUES)
         J.assemble()

@@ -80,6 +80,10 @@ class StrandGeometry:
             np.arange(len(self.wire_layer), dtype=np.int32), np.diff(self.wire_offsets)
         )
 
+    def centres(self, wires: npt.ArrayLike, z: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Initial centreline points (m) of wires ``wires`` at heights ``z`` (broadcast)."""
+        return _centres(self.cable, self.wire_phase, self.wire_layer, wires, z)
+
     def cell_lengths(self) -> npt.NDArray[np.float64]:
         return np.linalg.norm(np.diff(self.points[self.cells], axis=1)[:, 0], axis=1)
 
@@ -88,6 +92,16 @@ class StrandGeometry:
         p = self.pairs
         d = self.points[p.b] - self.points[p.a]
         return np.einsum("ij,ij->i", d, p.normal) - p.radius_a - p.radius_b
+
+
+def _centres(cable: Cable, phase, wire_layer, wires, z) -> npt.NDArray[np.float64]:
+    """Helix centres: (r cos φ, r sin φ, z) with φ = φ0 + ω z, for wire ids and z (broadcast)."""
+    wires, z = np.broadcast_arrays(np.asarray(wires), np.asarray(z, dtype=np.float64))
+    lay = wire_layer[wires]
+    radius = np.array([layer.radius for layer in cable.layers])[lay]
+    rate = np.array([layer.angular_rate for layer in cable.layers])[lay]
+    phi = phase[wires] + rate * z
+    return np.stack([radius * np.cos(phi), radius * np.sin(phi), z], axis=-1)
 
 
 def _crossings(lay_a, lay_b, length):
@@ -179,13 +193,9 @@ def build_geometry(
     # points and cells
     counts = np.array([len(z) for z in node_z])
     offsets = np.concatenate([[0], np.cumsum(counts)])
-    z_all = np.concatenate(node_z)
     wire_of_point = np.repeat(np.arange(len(node_z)), counts)
     lay_of_point = wire_layer[wire_of_point]
-    radius = np.array([lay.radius for lay in layers])[lay_of_point]
-    rate = np.array([lay.angular_rate for lay in layers])[lay_of_point]
-    phi = phase[wire_of_point] + rate * z_all
-    points = np.column_stack([radius * np.cos(phi), radius * np.sin(phi), z_all])
+    points = _centres(cable, phase, wire_layer, wire_of_point, np.concatenate(node_z))
     first = np.delete(np.arange(offsets[-1] - 1), offsets[1:-1] - 1)
     cells = np.column_stack([first, first + 1])
     cell_wire = wire_of_point[first].astype(np.int32)

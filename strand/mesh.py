@@ -103,10 +103,6 @@ class CableMesh:
         p = self.geometry.pairs
         return np.column_stack([i2b[p.a], i2b[p.b]]).astype(np.int32)
 
-    def point_blocks(self, V: fem.FunctionSpace, points: npt.ArrayLike) -> npt.NDArray[np.int32]:
-        """Local dof blocks of input points (rows of ``geometry.points``)."""
-        return input_to_block(V)[np.asarray(points)]
-
 
 def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD) -> CableMesh:
     """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays)."""

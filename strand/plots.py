@@ -88,10 +88,9 @@ def strand_picture(geometry, path, step: float = 0.03, section_z: float | None =
     ax3d.set_axis_off()
     ax3d.set_title(f"{g.cable.name}: {len(g.cells)} elements, {len(g.pairs)} contact pairs")
     z0 = g.length / 2 if section_z is None else section_z
-    for w, lay_id in enumerate(g.wire_layer):
+    centres = g.centres(np.arange(len(g.wire_layer)), z0)[:, :2] * 1e3
+    for centre, lay_id in zip(centres, g.wire_layer, strict=True):
         lay = g.cable.layers[lay_id]
-        phi = g.wire_phase[w] + lay.angular_rate * z0
-        centre = lay.radius * np.array([np.cos(phi), np.sin(phi)]) * 1e3
         ax.add_patch(
             plt.Circle(
                 centre,

@@ -1,0 +1,92 @@
+"""Compare the three contact normals on Cardinal: convergence, cost and gap accuracy.
+
+Run: .venv/bin/python benchmarks/contact_normals.py [length_m] [P_max_N] [frictionless]
+For each normal (neighbour, director, frozen): 40 kN tension, then the saddle load 0 → P_max. Prints
+per normal the Newton iterations per step, step cuts, wall time, time per iteration, midspan
+deflection, and the error of the element's gaps against the gaps measured on the deformed
+centrelines (rms / max per interface, µm). Add "frictionless" to run without friction.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import sys
+import time
+
+import numpy as np
+
+from strand.cable import cardinal
+from strand.contact.element import ContactSettings
+from strand.contact.measure import centreline_gaps
+from strand.geometry import build_geometry
+from strand.problem import StrandProblem
+from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
+
+
+def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
+    problem = StrandProblem(
+        geometry,
+        ContactSettings(normal=normal, friction=friction),
+        NewtonOptions(atol=1e-3, max_it=12),
+    )
+    out = {"normal": normal, "failed": ""}
+    t0 = time.perf_counter()
+    tension = LoadStepper(problem.solver, 10e3, 500.0)
+    lateral = LoadStepper(problem.solver, 250.0, 15.0, max_step=400.0)
+    try:
+        tension.ramp(problem.set_tension, 0.0, 40e3, "tension")
+        lateral.ramp(problem.set_lateral, 0.0, p_max, "lateral")
+    except LoadStepFailure as failure:
+        out["failed"] = (
+            str(failure).split(":")[0] + f" at {problem.tension:.0f} N / {problem.lateral:.0f} N"
+        )
+    out["seconds"] = time.perf_counter() - t0
+    out["tension"] = [r.iterations for r in tension.history]
+    out["lateral"] = [r.iterations for r in lateral.history]
+    out["cuts"] = sum(r.cuts for r in tension.history + lateral.history)
+    out["its"] = sum(out["tension"]) + sum(out["lateral"])
+    out["deflection"] = problem.midspan_deflection()
+    out["P"] = problem.lateral
+    x = geometry.points + problem.nodal[problem.i2b[np.arange(len(geometry.points))], :3]
+    measured = centreline_gaps(geometry, x) - centreline_gaps(geometry, geometry.points)
+    error = problem.pair_results()["gap"] - measured
+    out["gap_error"] = [
+        (np.sqrt(np.mean(error[m] ** 2)), np.abs(error[m]).max())
+        for m in (geometry.pairs.interface == i for i in range(4))
+    ]
+    out["penetration"] = -problem.pair_results()["gap"].min()
+    return out
+
+
+def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False) -> None:
+    geometry = build_geometry(cardinal(), length, 4e-3)
+    results = [
+        run(geometry, n, not frictionless, p_max) for n in ("neighbour", "director", "frozen")
+    ]
+    print(
+        f"Cardinal L = {length} m, T = 40 kN, saddle 0 → {p_max:.0f} N, "
+        f"{'frictionless' if frictionless else 'friction on'}"
+    )
+    head = f"{'normal':10s} {'tension its':14s} {'lateral its':34s} {'cuts':>4s} {'time s':>7s}"
+    head += f" {'s/it':>5s} {'δ mm':>6s} {'pen µm':>6s}  gap error rms/max µm (0|1 1|2 2|3 3|4)"
+    print(head)
+    for r in results:
+        errors = " ".join(f"{1e6 * a:.2f}/{1e6 * b:.1f}" for a, b in r["gap_error"])
+        its = max(r["its"], 1)
+        print(
+            f"{r['normal']:10s} {str(r['tension']):14s} {str(r['lateral']):34s} {r['cuts']:4d} "
+            f"{r['seconds']:7.1f} {r['seconds'] / its:5.2f} {1e3 * r['deflection']:6.2f} "
+            f"{1e6 * r['penetration']:6.2f}  {errors}"
+        )
+        if r["failed"]:
+            print(f"{'':10s} FAILED: {r['failed']} (δ above is at the last converged load)")
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    main(
+        float(args[0]) if len(args) > 0 else 1.0,
+        float(args[1]) if len(args) > 1 else 4300.0,
+        len(args) > 2 and args[2] == "frictionless",
+    )

@@ -54,9 +54,14 @@ class PairTerms(Protocol):
     ``jacobian`` is true, the tangent blocks K = ∂f/∂w (P, 6k, 6k), or None for state-independent
     terms. Each rank returns each term once. ``commit``/``rollback`` accept or discard the history
     built since the last converged step.
+
+    A term set whose blocks are sparse within the stencil may declare ``dofs`` (m,): the positions
+    (in 0..6k) of the stencil dofs that f (P, m) and K (P, m, m) hold; the others are zero and are
+    neither computed nor inserted (e.g. the rotations of nodes that enter through positions only).
     """
 
     stencils: npt.NDArray[np.int32]
+    # optional: dofs: npt.NDArray[np.intp]
 
     def evaluate(
         self, w: npt.NDArray[np.float64], jacobian: bool
@@ -225,27 +230,31 @@ class NewtonSolver:
         t0 = time.perf_counter()
         wn = wl.reshape(-1, 6)
         out = []
-        for t, (st, rows, mask) in zip(self.terms, self._term_masks(), strict=True):
+        for t, (idx, rows, mask) in zip(self.terms, self._term_masks(), strict=True):
             f, K = t.evaluate(wn, True)
             if len(rows):  # only the few stencils that touch a Dirichlet dof
                 f[rows] = np.where(mask, 0.0, f[rows])
                 if K is not None:
                     K[rows] = np.where(mask[:, :, None] | mask[:, None, :], 0.0, K[rows])
-            out.append((st, f, K))
+            out.append((idx, f, K))
         self._cache = (wl.copy(), out)
         self.timings["terms"] += time.perf_counter() - t0
         return out
 
     def _term_masks(self):
-        """Per term set: stencils, the rows with a Dirichlet dof, and their dof masks (cached)."""
+        """Per term set: local dof indices (P, m) of f and K, the rows (stencils) holding a
+        Dirichlet dof, and their dof masks. Built once."""
         if self._masks is None:
             self._masks = []
             for t in self.terms:
                 st = np.asarray(t.stencils)
-                dofs = (6 * st[:, :, None] + np.arange(6)).reshape(st.shape[0], 6 * st.shape[1])
-                m = self._bc_mask[dofs]
+                layout = getattr(t, "dofs", None)
+                if layout is None:
+                    layout = np.arange(6 * st.shape[1])
+                idx = np.ascontiguousarray(6 * st[:, layout // 6] + layout % 6, dtype=np.int32)
+                m = self._bc_mask[idx]
                 rows = np.flatnonzero(m.any(axis=1))
-                self._masks.append((st, rows, m[rows]))
+                self._masks.append((idx, rows, m[rows]))
         return self._masks
 
     # -- SNES callbacks --------------------------------------------------------------------------
@@ -257,9 +266,9 @@ class NewtonSolver:
         t1 = time.perf_counter()
         with b.localForm() as bl:
             bl.set(0.0)
-            arr = bl.array_w.reshape(-1, 6)
-            for st, f, _ in terms:
-                np.add.at(arr, st, f.reshape(st.shape[0], st.shape[1], 6))
+            arr = bl.array_w
+            for idx, f, _ in terms:
+                arr += np.bincount(idx.ravel(), weights=f.ravel(), minlength=len(arr))
         self.timings["insert"] += time.perf_counter() - t1
         fem_petsc.assemble_vector(b, self.F)
         fem_petsc.apply_lifting(b, [self.J], bcs=[self.bcs], x0=[x], alpha=-1.0)
@@ -277,9 +286,11 @@ class NewtonSolver:
         fem_petsc.assemble_matrix(J, self.J, self.bcs, diag=1.0)
         J.assemble(PETSc.Mat.AssemblyType.FLUSH)  # the Dirichlet diagonal was INSERTed
         t2 = time.perf_counter()
-        for st, _, K in terms:
-            if K is not None and len(st):
-                J.setValuesBlockedLocalRCV(st, st, K, addv=PETSc.InsertMode.ADD_VALUES)
+        for idx, _, K in terms:
+            if K is not None and len(idx):
+                J.setValuesLocalRCV(
+                    idx, idx, np.ascontiguousarray(K), addv=PETSc.InsertMode.ADD_VALUES
+                )
         J.assemble()
         t3 = time.perf_counter()
         self.timings["insert"] += t3 - t2
@@ -360,6 +371,10 @@ class LoadStepper:
         max_step: largest increment (default: unbounded).
         growth: factor applied to the increment after a solve of at most ``easy_iterations``.
         on_step: called with each ``StepRecord`` after the step is committed (write outputs there).
+        extrapolate: start each Newton solve of a ramp from the linear extrapolation of the
+            last two converged states (not across ramps, whose direction may reverse). Off by
+            default: the predictor's initial residual scales the relative tolerance ``rtol``, so
+            use it with an absolute tolerance that governs.
     """
 
     def __init__(
@@ -371,6 +386,7 @@ class LoadStepper:
         growth: float = 1.5,
         easy_iterations: int = 6,
         on_step: Callable[[StepRecord], None] | None = None,
+        extrapolate: bool = False,
     ):
         if not (0 < min_step <= first_step):
             raise ValueError("LoadStepper: need 0 < min_step <= first_step")
@@ -381,6 +397,7 @@ class LoadStepper:
         self.growth = growth
         self.easy_iterations = easy_iterations
         self.on_step = on_step
+        self.extrapolate = extrapolate
         self.history: list[StepRecord] = []
 
     def ramp(
@@ -392,11 +409,17 @@ class LoadStepper:
         current = start
         step = min(self.step, self.max_step)
         cuts = 0
+        w = self.solver.w.x.array
+        previous = None  # (load increment, unknowns increment) of the last step of this ramp
         while sign * (end - current) > 1e-12 * max(1.0, abs(end)):
             trial = current + sign * min(step, abs(end - current))
             set_load(trial)
+            start_w = w.copy()
+            if self.extrapolate and previous is not None:  # secant predictor along the ramp
+                w += (trial - current) / previous[0] * previous[1]
             result = self.solver.solve()
             if result.converged:
+                previous = (trial - current, w - start_w)
                 self.solver.commit()
                 rec = StepRecord(
                     stage, trial, result.iterations, result.residuals, result.seconds, cuts

@@ -140,3 +140,20 @@ def test_newton_converges_quadratically_on_tip_force():
 def test_nodal_load_validates_shapes():
     with pytest.raises(ValueError, match="one 6-vector"):
         NodalLoad([0, 1], [[1, 0, 0, 0, 0, 0]])
+
+
+def test_secant_predictor_saves_iterations_and_reaches_the_same_state():
+    """Extrapolating the last converged increment starts each step closer to its solution."""
+    results = {}
+    for extrapolate in (False, True):
+        case = cantilever(16, options=NewtonOptions(atol=1e-9, rtol=1e-14))
+        stepper = LoadStepper(case.solver, 0.1, 1e-3, growth=1.0, extrapolate=extrapolate)
+        force = case.force
+
+        def set_load(lam, force=force):
+            force.value = [0, lam * 0.5 * S["EI"], 0]
+
+        stepper.ramp(set_load, 0.0, 1.0)
+        results[extrapolate] = (sum(r.iterations for r in stepper.history), case.tip_u.copy())
+    assert results[True][0] < results[False][0]
+    assert np.allclose(results[True][1], results[False][1], rtol=1e-8, atol=1e-12)

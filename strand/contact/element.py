@@ -36,8 +36,11 @@ class ContactSettings:
     """Contact model settings (SI units).
 
     Attributes:
-        normal: "neighbour" (translation-only, default), "director" (the seed paper's rotated
-            tangents) or "frozen" (initial radial normal). See ``strand.contact.kinematics``.
+        normal: "neighbour" (translation-only), "director" (the seed paper's rotated tangents),
+            "frozen" (initial radial normal), or "auto" (default): "neighbour" with friction,
+            "frozen" without. A frictionless strand has near-zero-energy modes (wires rolling
+            around the layer below) that only the frozen normal's spurious stiffness holds; its
+            gaps are then only approximate in bending. See ``strand.contact.kinematics``.
         k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
         k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
             line pair gets k_line × its tributary length.
@@ -45,16 +48,18 @@ class ContactSettings:
         friction: use the Coulomb coefficients of the cable (False: frictionless).
     """
 
-    normal: str = "neighbour"
+    normal: str = "auto"
     k_point: float = 5e7
     k_line: float = 5e9
     g_lim: float = 5e-6
     friction: bool = True
 
     def __post_init__(self):
+        if self.normal == "auto":
+            object.__setattr__(self, "normal", "neighbour" if self.friction else "frozen")
         if self.normal not in NORMALS:
             raise CableError(
-                f"contact normal {self.normal!r} is unknown; choose one of {', '.join(NORMALS)}"
+                f"contact normal {self.normal!r} is unknown; choose auto, {', '.join(NORMALS)}"
             )
         for name in ("k_point", "k_line", "g_lim"):
             value = getattr(self, name)
@@ -133,6 +138,11 @@ class ContactGroup:
                 f"{normal} normal needs stencils of {len(stencil_nodes(normal, line))}"
             )
         self.X = np.asarray(initial_positions, dtype=float)
+        #: stencil dofs that the residual and tangent hold: (u, θ) of a and b, and the positions of
+        #: the neighbour nodes (their rotations never enter)
+        self.dofs = np.concatenate(
+            [np.arange(12), (6 * np.arange(2, k)[:, None] + np.arange(3)).ravel()]
+        )
         self.line = line
         self.normal_kind = normal
         self.r_a = np.asarray(radius_a, dtype=float)
@@ -199,13 +209,13 @@ class ContactGroup:
             hessian_where=(lambda g: g <= 0.0) if jacobian else None,
         )
         p, dp_dg = normal_force(gd.gap, self.k_n)
-        G = gd.gradient
+        G = gd.gradient[:, self.dofs]
         f = -p[:, None] * G
         K = None
         if jacobian:
             K = G[:, :, None] * G[:, None, :]
             K *= -dp_dg[:, None, None]
-            gd.add_hessian(K, -p)
+            gd.add_hessian(K, -p, self.dofs)
         traction = np.zeros((len(p), 3))
         slipping = np.zeros(len(p), dtype=bool)
         if self.friction:

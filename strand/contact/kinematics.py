@@ -211,13 +211,19 @@ class GapDerivatives:
     hessian_dofs: npt.NDArray[np.intp]
     hessian: Array
 
-    def add_hessian(self, K: Array, scale: Array) -> None:
-        """K[p] += scale[p] ∂²g/∂q² for every pair (in place); ``scale`` (P,)."""
+    def add_hessian(
+        self, K: Array, scale: Array, layout: npt.NDArray[np.intp] | None = None
+    ) -> None:
+        """K[p] += scale[p] ∂²g/∂q² for every pair (in place); ``scale`` (P,).
+
+        ``layout`` (sorted, m) names the stencil dofs that K's m rows hold (default: all 6k).
+        """
         if len(self.hessian_pairs):
             s = self.hessian_pairs
-            K[np.ix_(s, self.hessian_dofs, self.hessian_dofs)] += (
-                scale[s, None, None] * self.hessian
+            pos = (
+                self.hessian_dofs if layout is None else np.searchsorted(layout, self.hessian_dofs)
             )
+            K[np.ix_(s, pos, pos)] += scale[s, None, None] * self.hessian
 
     def full_hessian(self) -> Array:
         """∂²g/∂q² as a dense (P, 6k, 6k) array (for tests)."""

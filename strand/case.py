@@ -1,26 +1,65 @@
-"""Case files (TOML): which cable, how it is meshed (and, later, loads and solver settings).
+"""Case files (TOML): the cable, its mesh, contact, loads, load steps, solver and outputs.
 
-A case file may hold::
+Every setting has a default; a case file only lists what it changes. The default case is the seed
+paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +4.3 → 0 → −4.3 → 0 kN::
 
-    cable = "cardinal"            # built-in name, or a path to a cable TOML (relative to the case)
-    # or an inline [cable] table with name, [cable.core] and [[cable.layer]]
+    cable = "cardinal"        # built-in name, a cable TOML (relative to the case), or a [cable] table
 
     [mesh]
-    length = 1.0                  # m, free length of the strand
-    h_max = 4e-3                  # m, largest element (arc length)
+    length = 1.0              # m, free length between the end sections
+    h_max = 4e-3              # m, largest element (arc length)
 
-Unknown keys are errors, reported with the file and the key before any computing starts.
+    [contact]
+    normal = "auto"           # auto (director with friction, frozen without) | neighbour | director | frozen
+    k_point = 5e7             # N/m, penalty per crossing
+    k_line = 5e9              # N/m², core | layer-1 penalty per metre of wire
+    g_lim = 5e-6              # m, elastic slip at which friction reaches μP
+    friction = true           # Coulomb coefficients of the cable; false: frictionless
+
+    [load]
+    tension = 40e3            # N, end force, held during bending
+    lateral = 4.3e3           # N, saddle load amplitude
+    cycle = [1.0, 0.0, -1.0, 0.0]   # lateral targets after tensioning, in units of `lateral`
+    saddle_length = 0.02      # m, axial length of the saddle at midspan
+    direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load
+
+    [steps]
+    tension = 10e3            # N, first tension increment (grows ×growth after easy steps)
+    lateral = 250.0           # N, first lateral increment of each leg of the cycle
+    lateral_max = 400.0       # N, largest lateral increment
+    growth = 1.5
+    cuts = 6                  # halvings allowed before a step is declared failed
+    max_iterations = 12       # Newton iterations per attempt
+    tolerance = 1e-3          # N, absolute residual tolerance
+
+    [output]
+    folder = "results/cardinal"
+    fields = true             # XDMF time series for ParaView
+    plots = true              # PNG figures at the end
+
+Unknown keys and bad values are errors naming the file and the key, raised before any computing.
 """
 
 from __future__ import annotations
 
+import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 from .cable import Cable, CableError, cable_from_dict, cardinal, load_cable
+from .contact.element import ContactSettings
 
-__all__ = ["Case", "MeshSettings", "load_case", "CaseError"]
+__all__ = [
+    "Case",
+    "CaseError",
+    "MeshSettings",
+    "LoadSettings",
+    "StepSettings",
+    "OutputSettings",
+    "load_case",
+    "case_from_dict",
+]
 
 BUILTIN_CABLES = {"cardinal": cardinal}
 
@@ -36,23 +75,121 @@ class MeshSettings:
 
 
 @dataclass(frozen=True)
+class LoadSettings:
+    tension: float = 40e3  # N
+    lateral: float = 4.3e3  # N
+    cycle: tuple[float, ...] = (1.0, 0.0, -1.0, 0.0)
+    saddle_length: float = 0.02  # m
+    direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class StepSettings:
+    tension: float = 10e3  # N
+    lateral: float = 250.0  # N
+    lateral_max: float = 400.0  # N
+    growth: float = 1.5
+    cuts: int = 6
+    max_iterations: int = 12
+    tolerance: float = 1e-3  # N
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    folder: str = ""  # default: results/<case file stem> or results/cardinal
+    fields: bool = True
+    plots: bool = True
+
+
+@dataclass(frozen=True)
 class Case:
     cable: Cable
-    mesh: MeshSettings
+    mesh: MeshSettings = field(default_factory=MeshSettings)
+    contact: ContactSettings = field(default_factory=ContactSettings)
+    load: LoadSettings = field(default_factory=LoadSettings)
+    steps: StepSettings = field(default_factory=StepSettings)
+    output: OutputSettings = field(default_factory=OutputSettings)
     source: str = "built-in default"
 
 
-def _positive(table: dict, key: str, where: str, default: float) -> float:
-    v = table.get(key, default)
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not v > 0:
-        raise CaseError(f"{where}.{key} = {v!r}: expected a positive number")
-    return float(v)
+SECTIONS = {
+    "mesh": MeshSettings,
+    "contact": ContactSettings,
+    "load": LoadSettings,
+    "steps": StepSettings,
+    "output": OutputSettings,
+}
+
+#: settings that may be zero or negative (all other numbers must be positive)
+_SIGNED = {("load", "tension"), ("load", "lateral")}
+
+
+def _value(section: str, key: str, value, default):
+    where = f"[{section}] {key} = {value!r}"
+    if isinstance(default, bool):
+        if not isinstance(value, bool):
+            raise CaseError(f"{where}: expected true or false")
+        return value
+    if isinstance(default, int | float):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not math.isfinite(value)
+        ):
+            raise CaseError(f"{where}: expected a number")
+        if isinstance(default, int) and not float(value).is_integer():
+            raise CaseError(f"{where}: expected a whole number")
+        if (section, key) not in _SIGNED and not value > 0:
+            raise CaseError(f"{where}: expected a positive number")
+        return type(default)(value)
+    if isinstance(default, tuple):
+        if not isinstance(value, list) or not all(
+            isinstance(v, int | float) and not isinstance(v, bool) for v in value
+        ):
+            raise CaseError(f"{where}: expected a list of numbers")
+        if key == "direction" and (len(value) != 3 or value[2] != 0 or value[:2] == [0, 0]):
+            raise CaseError(f"{where}: expected [x, y, 0], a direction across the strand axis")
+        if key == "cycle" and not value:
+            raise CaseError(f"{where}: expected at least one lateral target")
+        return tuple(float(v) for v in value)
+    if isinstance(default, str):
+        if not isinstance(value, str):
+            raise CaseError(f"{where}: expected a string")
+        return value
+    raise AssertionError(f"no rule for {section}.{key}")
+
+
+def _section(name: str, table, source: str):
+    cls = SECTIONS[name]
+    if not isinstance(table, dict):
+        raise CaseError(f"{source}: [{name}] must be a table")
+    defaults = cls()
+    known = [f.name for f in fields(cls)]
+    unknown = sorted(set(table) - set(known))
+    if unknown:
+        raise CaseError(
+            f"{source}: unknown setting(s) in [{name}]: {unknown}; allowed: {sorted(known)}"
+        )
+    values = {}
+    for key, value in table.items():
+        default = getattr(defaults, key)
+        if name == "contact" and key == "normal":
+            default = ""
+        try:
+            values[key] = _value(name, key, value, default)
+        except CaseError as e:
+            raise CaseError(f"{source}: {e}") from None
+    try:
+        return replace(defaults, **values) if name != "contact" else cls(**values)
+    except CableError as e:
+        raise CaseError(f"{source}: [{name}] {e}") from None
 
 
 def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
-    unknown = sorted(set(data) - {"cable", "mesh"})
+    allowed = ["cable", *SECTIONS]
+    unknown = sorted(set(data) - set(allowed))
     if unknown:
-        raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: ['cable', 'mesh']")
+        raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: {allowed}")
     spec = data.get("cable", "cardinal")
     try:
         if isinstance(spec, str):
@@ -66,25 +203,17 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
             raise CaseError(f"{source}: 'cable' must be a name, a file or a table")
     except CableError as e:
         raise CaseError(f"{source}: cable: {e}") from None
-    mesh = data.get("mesh", {})
-    if not isinstance(mesh, dict):
-        raise CaseError(f"{source}: [mesh] must be a table")
-    unknown = sorted(set(mesh) - {"length", "h_max"})
-    if unknown:
-        raise CaseError(
-            f"{source}: unknown setting(s) in [mesh]: {unknown}; allowed: ['h_max', 'length']"
-        )
-    settings = MeshSettings(
-        _positive(mesh, "length", "mesh", MeshSettings.length),
-        _positive(mesh, "h_max", "mesh", MeshSettings.h_max),
-    )
-    return Case(cable, settings, source)
+    sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
+    steps = sections["steps"]
+    if steps.lateral > steps.lateral_max:
+        raise CaseError(f"{source}: [steps] lateral = {steps.lateral} exceeds lateral_max")
+    return Case(cable, **sections, source=source)
 
 
 def load_case(path: str | Path | None = None) -> Case:
-    """Read a case file; ``None`` gives the default case (Cardinal, 1 m, h_max = 4 mm)."""
+    """Read a case file; ``None`` gives the default case (the seed paper's Cardinal test)."""
     if path is None:
-        return case_from_dict({})
+        return case_from_dict({}, source="built-in default")
     path = Path(path)
     try:
         data = tomllib.loads(path.read_text())

@@ -1,20 +1,18 @@
 """strand's command line.
 
-strand run  [case.toml]   the main job (for now the roll-up demo; the Cardinal case comes next)
+strand run  [case.toml]   the main job: tension, then the lateral saddle cycle (default: Cardinal,
+                          the seed paper's test); writes fields, CSV tables and figures
 strand mesh [case.toml]   build the strand mesh and contact pairs, print the table, draw them
 """
 
 from __future__ import annotations
 
 import argparse
-import runpy
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
-
-DEMOS = Path(__file__).resolve().parents[1] / "demos"
 
 
 def mesh_table(geometry) -> str:
@@ -77,13 +75,38 @@ def _mesh(args) -> int:
     return 0
 
 
+def _run(args) -> int:
+    from .case import load_case
+
+    case = load_case(args.case)  # every setting is checked here, before any computing
+    out = args.out or case.output.folder
+    if not out:
+        out = f"results/{Path(args.case).stem}" if args.case else "results/cardinal"
+    from .run import run_case
+
+    result = run_case(case, out)
+    return 3 if result.failure else 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="strand", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help="run the main job (currently: the cantilever roll-up demo)")
-    run.add_argument("case", nargs="?", help="case file (TOML); not used yet")
+    from . import case as case_module
+
+    run = sub.add_parser(
+        "run",
+        help="tension then lateral cycle (default: Cardinal, the seed paper's test)",
+        description="Run a tension-bending case. Every setting lives in a TOML case file; a case "
+        "lists only what it changes. Settings and defaults:\n\n"
+        + case_module.__doc__.split("::", 1)[1].split("Unknown keys")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    run.add_argument(
+        "case", nargs="?", help="case file (TOML); default: the built-in Cardinal case"
+    )
+    run.add_argument("--out", help="results folder (default: [output] folder, or results/<case>)")
     mesh = sub.add_parser(
         "mesh", help="build the strand mesh and contact pairs; print and draw them"
     )
@@ -99,10 +122,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "mesh":
             return _mesh(args)
-        if args.case:
-            parser.error("case files arrive with the Cardinal run; run without one for now")
-        runpy.run_path(str(DEMOS / "demo_cantilever_rollup.py"), run_name="__main__")
-        return 0
+        return _run(args)
     except (CableError, CaseError) as e:
         print(f"strand: error: {e}", file=sys.stderr)
         return 2

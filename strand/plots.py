@@ -125,3 +125,109 @@ def strand_picture(geometry, path, step: float = 0.03, section_z: float | None =
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
+
+
+def results_figures(case, result, problem) -> list[Path]:
+    """The run's figures (PNG) in ``result.folder``: axial force along z per layer and sector at
+    the largest load (the seed paper's Fig. 3), its change from the tensioned state (Fig. 4), the
+    load–deflection loop (Fig. 5), moment–curvature with the EI bounds, and the deformed strand
+    coloured by axial force. Figures whose data the run did not reach are skipped."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .post import bending_stiffness_bounds, sector_of
+
+    folder = Path(result.folder)
+    paths = []
+    n_layers = len(case.cable.layers)
+    L = case.mesh.length
+    cmap = plt.get_cmap("twilight", 8)
+
+    def save_fig(fig, name):
+        fig.tight_layout()
+        fig.savefig(folder / name, dpi=110)
+        plt.close(fig)
+        paths.append(folder / name)
+
+    peak, base = result.peak, result.tensioned
+    P_peak = max((s["lateral"] for s in result.steps), key=abs, default=0.0)
+    if peak is not None:
+        fig, axes = plt.subplots(n_layers, 1, figsize=(9, 2.2 * n_layers), sharex=True)
+        for i, ax in enumerate(np.atleast_1d(axes)):
+            m = peak.layer == i
+            sec = sector_of(peak.phi[m])
+            sc = ax.scatter(1e3 * peak.z[m], peak.axial[m], c=sec, cmap=cmap, vmin=-0.5,
+                            vmax=7.5, s=3)  # fmt: skip
+            ax.set_ylabel(f"{'core' if i == 0 else f'layer {i}'}\nN (N)")
+        ax.set_xlabel("z (mm)")
+        cb = fig.colorbar(sc, ax=axes, ticks=range(8))
+        cb.ax.set_yticklabels([f"{-180 + 45 * k}…{-135 + 45 * k}°" for k in range(8)])
+        cb.set_label("sector of φ (90° = stretched fibre)")
+        fig.suptitle(
+            f"wire axial forces at P = {P_peak / 1e3:.2f} kN, T = {case.load.tension / 1e3:g} kN"
+        )
+        fig.savefig(folder / "axial_force_sectors.png", dpi=110)
+        plt.close(fig)
+        paths.append(folder / "axial_force_sectors.png")
+
+    if peak is not None and base is not None:
+        fig, axes = plt.subplots(1, n_layers - 1, figsize=(3.2 * (n_layers - 1), 3.4), sharey=True)
+        near = np.abs(peak.z - L / 2) <= 0.1 * L
+        for i, ax in enumerate(np.atleast_1d(axes), start=1):
+            m = near & (peak.layer == i)
+            ax.scatter(peak.phi[m], peak.axial[m] - base.axial[m], s=3, c=peak.z[m], cmap="viridis")
+            ax.axhline(0, color="k", lw=0.5)
+            ax.set_xticks([-180, -90, 0, 90, 180])
+            ax.set_title(f"layer {i}")
+            ax.set_xlabel("φ (deg)")
+        np.atleast_1d(axes)[0].set_ylabel("ΔN (N), |z − L/2| ≤ 0.1 L")
+        fig.suptitle("change of axial force from the tensioned state to the largest load")
+        save_fig(fig, "axial_force_change.png")
+
+    lateral = [s for s in result.steps if s["stage"] != "tension"]
+    if lateral:
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        P = [0.0] + [s["lateral"] / 1e3 for s in lateral]
+        d = [0.0] + [1e3 * s["deflection"] for s in lateral]
+        ax.plot(d, P, "o-", ms=3)
+        ax.set_xlabel("midspan deflection (mm)")
+        ax.set_ylabel("lateral load P (kN)")
+        ax.grid(alpha=0.3)
+        ax.set_title(f"load–deflection, T = {case.load.tension / 1e3:g} kN")
+        save_fig(fig, "load_deflection.png")
+
+        mk = np.loadtxt(folder / "moment_curvature.csv", delimiter=",", skiprows=1, ndmin=2)
+        ei_min, ei_max = bending_stiffness_bounds(case.cable)
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        ax.plot(np.r_[0, mk[:, 2]], np.r_[0, mk[:, 3]], "o-", ms=3, label="model, midspan")
+        k = np.linspace(0, np.abs(mk[:, 2]).max(), 2)
+        ax.plot(k, ei_max * k, "--", label=f"EI_max = {ei_max:.0f} N m²")
+        ax.plot(k, ei_min * k, ":", label=f"EI_min = {ei_min:.1f} N m²")
+        ax.set_ylim(1.2 * min(mk[:, 3].min(), 0), 1.2 * max(mk[:, 3].max(), 0) + 1e-9)
+        ax.set_xlabel("curvature κ (1/m)")
+        ax.set_ylabel("bending moment M (N m)")
+        ax.legend()
+        ax.grid(alpha=0.3)
+        save_fig(fig, "moment_curvature.png")
+
+    if peak is not None and result.peak_w is not None:
+        from .mesh import node_to_block
+
+        mesh = problem.cmesh.mesh
+        u = result.peak_w.reshape(-1, 6)[:, :3]
+        disp = u[node_to_block(problem.V)]  # in the order of the mesh's geometry nodes
+        n_local = mesh.topology.index_map(1).size_local
+        order = np.asarray(mesh.topology.original_cell_index)[:n_local]
+        plotter = offscreen_plotter(window_size=(1600, 700))
+        grid = tubes(mesh, disp, peak.axial[order], "N (N)", radius=1.6e-3)
+        plotter.add_mesh(grid, scalars="N (N)", cmap="coolwarm")
+        plotter.add_text(
+            f"axial force at P = {P_peak / 1e3:.2f} kN (deflection true scale)", font_size=10
+        )
+        plotter.view_vector((0.0, -1.0, 0.0), viewup=(1.0, 0.0, 0.0))
+        plotter.reset_camera()
+        plotter.camera.zoom(2.2)
+        paths.append(save(plotter, folder / "deformed_axial_force.png"))
+    return paths

@@ -181,7 +181,7 @@ def test_strand_mesh_command(tmp_path, capsys):
     assert (tmp_path / "out" / "centrelines.vtu").exists()
     case.write_text('cable = "cardinal"\n[mesh]\nh_max = -1\n')
     assert main(["mesh", str(case)]) == 2
-    assert "mesh.h_max = -1: expected a positive number" in capsys.readouterr().err
+    assert "[mesh] h_max = -1: expected a positive number" in capsys.readouterr().err
 
 
 def test_gmsh_model_comes_in_like_strands_own_mesh():

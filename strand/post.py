@@ -1,0 +1,151 @@
+"""Post-processing of a strand state: wire axial forces, angular sectors, midspan moment–curvature,
+and the analytical references they are compared with (fibre model, bending-stiffness bounds).
+
+Conventions (physics.md B). The lateral load acts along ``direction`` d; the neutral axis of bending
+is s = e_z × d. A wire's angle φ is measured from s towards d, so φ = +90° is the fibre stretched
+at midspan by a positive load. Moments and curvatures are reported positive for a positive load.
+Units: m, N, N m, 1/m.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+import strand  # noqa: F401
+
+import ufl  # isort: skip
+from dolfinx import fem  # isort: skip
+
+from .cable import Cable  # isort: skip
+from .problem import StrandProblem  # isort: skip
+
+__all__ = [
+    "CellResults",
+    "cell_results",
+    "sector_of",
+    "midspan_moment_curvature",
+    "fibre_model",
+    "bending_stiffness_bounds",
+]
+
+Array = npt.NDArray[np.float64]
+
+
+@dataclass
+class CellResults:
+    """Per element, in the geometry's cell order: wire, layer, z (m, initial midpoint), angle φ
+    (deg, current, about the core), axial force N (N), and the spatial section force n (N) and
+    moment m (N m) vectors."""
+
+    wire: npt.NDArray[np.int32]
+    layer: npt.NDArray[np.int32]
+    z: Array
+    phi: Array
+    axial: Array
+    force: Array
+    moment: Array
+
+
+class _CellEvaluator:
+    """Evaluates cell-wise beam quantities (DG0) and maps them to the geometry's cell order."""
+
+    def __init__(self, problem: StrandProblem):
+        mesh = problem.cmesh.mesh
+        beam = problem.beam
+        self.D = fem.functionspace(mesh, ("DG", 0, (7,)))
+        self.f = fem.Function(self.D)
+        n, m = beam.spatial_force(), beam.spatial_moment()
+        expr = [beam.N[0], n[0], n[1], n[2], m[0], m[1], m[2]]
+        self.expr = fem.Expression(ufl.as_vector(expr), self.D.element.interpolation_points)
+        n_local = mesh.topology.index_map(1).size_local
+        self.order = np.asarray(mesh.topology.original_cell_index)[:n_local]
+        self.dofs = self.D.dofmap.list[:n_local, 0]
+
+    def __call__(self) -> Array:
+        self.f.interpolate(self.expr)
+        out = np.zeros((self.order.max() + 1, 7))
+        out[self.order] = self.f.x.array.reshape(-1, 7)[self.dofs]
+        return out
+
+
+def sector_of(phi_deg: Array, sectors: int = 8) -> npt.NDArray[np.int32]:
+    """Angular sector of each angle φ (deg): ``sectors`` bins of 360/sectors degrees, bin 0
+    starting at φ = −180°. With 8 sectors, bin 6 is [90°, 135°): next to the stretched fibre."""
+    width = 360.0 / sectors
+    return (np.floor((np.asarray(phi_deg) + 180.0) / width).astype(np.int32)) % sectors
+
+
+def cell_results(problem: StrandProblem, evaluator: _CellEvaluator | None = None) -> CellResults:
+    """Axial forces and section resultants of every element, with its wire, layer, z and φ."""
+    g = problem.geometry
+    evaluator = evaluator or _CellEvaluator(problem)
+    values = evaluator()
+    x = g.points + problem.nodal[problem.i2b[np.arange(len(g.points))], :3]
+    mid = x[g.cells].mean(axis=1)
+    core = x[g.wire_offsets[0] : g.wire_offsets[1]]
+    z0 = g.points[g.cells].mean(axis=1)[:, 2]
+    centre = np.column_stack([np.interp(z0, core[:, 2], core[:, i]) for i in range(3)])
+    r = mid - centre
+    d = problem.direction
+    s = np.cross([0.0, 0.0, 1.0], d)
+    phi = np.degrees(np.arctan2(r @ d, r @ s))
+    return CellResults(
+        g.cell_wire, g.cell_layer, z0, phi, values[:, 0], values[:, 1:4], values[:, 4:7]
+    )
+
+
+def midspan_moment_curvature(problem: StrandProblem, cells: CellResults, fit_half_length=0.015):
+    """Bending moment (N m) of the cross-section at z = L/2 and curvature (1/m) of the core there.
+
+    M = Σ_wires [(x_w − x_core) × n_w + m_w] · (e_z × d), from the elements that the section cuts;
+    κ = −u_d″ from a quadratic fit of the core's lateral displacement over ±``fit_half_length``.
+    Both change sign so that a positive load gives positive values. Also returns Σ N_z (N), which
+    must equal the tension.
+    """
+    g = problem.geometry
+    L = g.length
+    x = g.points + problem.nodal[problem.i2b[np.arange(len(g.points))], :3]
+    z0, z1 = g.points[g.cells, 2].T
+    cut = np.flatnonzero((z0 <= L / 2) & (z1 > L / 2))
+    t = (L / 2 - z0[cut]) / (z1[cut] - z0[cut])
+    at = x[g.cells[cut, 0]] * (1 - t)[:, None] + x[g.cells[cut, 1]] * t[:, None]
+    core = at[g.cell_wire[cut] == 0][0]
+    b = np.cross([0.0, 0.0, 1.0], problem.direction)
+    M_vec = (np.cross(at - core, cells.force[cut]) + cells.moment[cut]).sum(axis=0)
+    axial = cells.force[cut, 2].sum()
+    idx = np.arange(g.wire_offsets[0], g.wire_offsets[1])
+    zc = g.points[idx, 2] - L / 2
+    near = np.abs(zc) <= fit_half_length
+    u = problem.nodal[problem.i2b[idx[near]], :3] @ problem.direction
+    c2 = np.polyfit(zc[near], u, 2)[0]
+    return -float(M_vec @ b), -2.0 * c2, float(axial)
+
+
+def fibre_model(cable: Cable, tension: float) -> dict:
+    """Axial stiffness (N), strain and wire forces (N) per layer for ends held against rotation
+    (physics.md E 3.2: ε_w = ε cos²α, F = Σ n E A cos³α ε)."""
+    k = 0.0
+    per_layer = []
+    for lay in cable.layers:
+        c = np.cos(lay.alpha)
+        n = max(lay.wires, 1)
+        k += n * lay.wire.E * lay.wire.area * c**3
+        per_layer.append(lay.wire.E * lay.wire.area * c**2)
+    eps = tension / k
+    return {"EA": k, "strain": eps, "wire_force": [f * eps for f in per_layer]}
+
+
+def bending_stiffness_bounds(cable: Cable) -> tuple[float, float]:
+    """(EI_min, EI_max) in N m²: Σ n EI of free-slipping wires, plus Σ (n/2) E A r² cos³α when
+    every layer sticks (physics.md C(b))."""
+    ei_min = sum(
+        max(lay.wires, 1) * lay.wire.E * np.pi * lay.wire.diameter**4 / 64 for lay in cable.layers
+    )
+    stick = sum(
+        lay.wires / 2 * lay.wire.E * lay.wire.area * lay.radius**2 * np.cos(lay.alpha) ** 3
+        for lay in cable.layers[1:]
+    )
+    return ei_min, ei_min + stick

@@ -22,7 +22,7 @@ from strand.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
 
-def main(normal: str = "neighbour", length: float = 1.0) -> None:
+def main(normal: str = "director", length: float = 1.0) -> None:
     t0 = time.perf_counter()
     geometry = build_geometry(cardinal(), length, 4e-3)
     problem = StrandProblem(geometry, ContactSettings(normal=normal), NewtonOptions(atol=1e-3))
@@ -67,4 +67,4 @@ def main(normal: str = "neighbour", length: float = 1.0) -> None:
 
 
 if __name__ == "__main__":
-    main(*(sys.argv[1:2] or ["neighbour"]), *[float(a) for a in sys.argv[2:3]])
+    main(*(sys.argv[1:2] or ["director"]), *[float(a) for a in sys.argv[2:3]])

@@ -437,3 +437,21 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(k_point=-1)
     with pytest.raises(CableError, match="unknown contact setting"):
         ContactSettings.from_dict({"kn": 1})
+
+
+@pytest.mark.parametrize("angle", [0.0, 1e-6, 0.01, 0.1, 0.2999, 0.3001, 1.0, 3.0])
+def test_rotation_coefficients_exact_on_both_sides_of_the_series_switch(angle):
+    """sin x/x, (1 − cos x)/x², (x − sin x)/x³ against their series in exact rational arithmetic."""
+    from fractions import Fraction
+    from math import factorial
+
+    from strand.contact.kinematics import _rotation_coefficients
+
+    def exact(first):
+        x = Fraction(angle)
+        return float(sum((-1) ** k * x ** (2 * k) / factorial(2 * k + first) for k in range(40)))
+
+    theta = np.array([[0.6, -0.8, 0.0]]) * angle
+    values = _rotation_coefficients(theta)
+    for value, first in zip(values, (1, 2, 3), strict=True):
+        assert value[0] == pytest.approx(exact(first), rel=1e-14 if angle < 0.3 else 1e-9)

@@ -176,6 +176,7 @@ class ContactGroup:
         self._n_old = n0.copy()
         self._p_old = np.zeros(n_pairs)
         self._last: tuple | None = None
+        self._S: Array | None = None  # slip operator of the current step
         self.state = ContactState(
             np.zeros(n_pairs),
             np.zeros(n_pairs),
@@ -193,6 +194,11 @@ class ContactGroup:
 
     def slip_operator(self) -> Array:
         """S (P, 3, 12): Δg_T = S Δ(u_a, θ_a, u_b, θ_b), with the normal frozen over the step."""
+        if self._S is None:
+            self._S = self._build_slip_operator()
+        return self._S
+
+    def _build_slip_operator(self) -> Array:
         n = self._n_old
         P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
         N = _skew(n)
@@ -250,6 +256,7 @@ class ContactGroup:
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
         self._q_old = self._last.copy()
+        self._S = None
 
     def rollback(self) -> None:
         """Forget the current step (history is only changed by ``commit``)."""

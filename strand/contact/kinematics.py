@@ -27,6 +27,7 @@ Lengths in m.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -48,29 +49,41 @@ NORMALS = ("frozen", "neighbour", "director")
 
 #: complex step; any tiny value is exact since no difference is taken
 _EPS = 1e-30
-_SMALL_ANGLE2 = 1e-4
+_SMALL_ANGLE2 = 0.09  # series below |θ| = 0.3 rad
 
 
 def _dot(a, b):
-    return np.sum(a * b, axis=-1)
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
 
 
 def _norm(a):
     return np.sqrt(_dot(a, a))
 
 
+def _series(x2, first: int):
+    """Σ_k (−1)^k x^{2k}/(2k + first)!, by Horner, with as many terms as the largest x² needs for
+    1e-17 (at most 9 terms: exact to round-off for x² < 0.09)."""
+    biggest = float(np.max(np.abs(x2), initial=0.0))
+    terms = 9
+    while terms > 2 and biggest ** (terms - 1) / math.factorial(2 * terms - 2 + first) < 1e-17:
+        terms -= 1
+    out = np.zeros_like(x2)
+    for k in range(terms - 1, -1, -1):
+        out = out * (-x2) + 1.0 / math.factorial(2 * k + first)
+    return out
+
+
 def _rotation_coefficients(theta):
     """(sin x/x, (1 − cos x)/x², (x − sin x)/x³), x = |θ|, complex-analytic and safe at 0."""
     x2 = _dot(theta, theta)
     small = np.real(x2) < _SMALL_ANGLE2
-    xs2 = np.where(small, 1.0, x2)
-    x = np.sqrt(xs2)
-    a = np.where(small, 1 - x2 / 6 + x2**2 / 120 - x2**3 / 5040, np.sin(x) / x)
-    b = np.where(small, 0.5 - x2 / 24 + x2**2 / 720 - x2**3 / 40320, (1 - np.cos(x)) / xs2)
-    c = np.where(
-        small, 1 / 6 - x2 / 120 + x2**2 / 5040 - x2**3 / 362880, (x - np.sin(x)) / (xs2 * x)
-    )
-    return a, b, c
+    coefficients = [_series(x2, 1), _series(x2, 2), _series(x2, 3)]
+    if not np.all(small):  # the closed forms, only where the series would be inexact
+        xs2 = np.where(small, 1.0, x2)
+        x = np.sqrt(xs2)
+        exact = [np.sin(x) / x, (1 - np.cos(x)) / xs2, (x - np.sin(x)) / (xs2 * x)]
+        coefficients = [np.where(small, s, e) for s, e in zip(coefficients, exact, strict=True)]
+    return coefficients
 
 
 def _skew(v):
@@ -99,14 +112,35 @@ def tangent_map(theta):
     return np.eye(3) + b[..., None, None] * W + c[..., None, None] * (W @ W)
 
 
+def _cross(u, v):
+    """u × v over the last axis (cheaper than np.cross for many small vectors)."""
+    u0, u1, u2 = u[..., 0], u[..., 1], u[..., 2]
+    v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
+    return np.stack([u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0], axis=-1)
+
+
+def _rotate(theta, coefficients, v):
+    """R(θ) v = v + a θ×v + b θ×(θ×v), without forming R (..., 3)."""
+    a, b, _ = coefficients
+    tv = _cross(theta, v)
+    return v + a[..., None] * tv + b[..., None] * _cross(theta, tv)
+
+
+def _tangent_map_transpose(theta, coefficients, v):
+    """T(θ)ᵀ v = v − b θ×v + c θ×(θ×v) (T = I + b θ× + c θ×², θ×ᵀ = −θ×)."""
+    _, b, c = coefficients
+    tv = _cross(theta, v)
+    return v - b[..., None] * tv + c[..., None] * _cross(theta, tv)
+
+
 def _cross_normal_gradient(d, ca, cb, s):
     """g = d·n with n = s(ca × cb)/|ca × cb|: returns n and ∂g/∂d, ∂g/∂ca, ∂g/∂cb."""
-    m = s[..., None] * np.cross(ca, cb)
+    m = s[..., None] * _cross(ca, cb)
     mm = _norm(m)
     n = m / mm[..., None]
     w = (d - _dot(d, n)[..., None] * n) / mm[..., None]  # ∂g/∂m
-    g_ca = s[..., None] * np.cross(cb, w)
-    g_cb = s[..., None] * np.cross(w, ca)
+    g_ca = s[..., None] * _cross(cb, w)
+    g_cb = s[..., None] * _cross(w, ca)
     return n, n, g_ca, g_cb
 
 
@@ -119,63 +153,77 @@ def _projected_normal_gradient(d, c):
     return n, n, -(dc / cc)[..., None] * n
 
 
-# -- the three normals: value g + g0 and gradient in the stencil unknowns y ----------------------
-# y is split into 3-vectors: translation-only normals use current positions x per stencil node;
-# ``director`` uses (x_a, θ_a, x_b, θ_b) and the initial tangents t0 (P, 2, 3).
+# -- the three normals: value g + g0 and gradient in reduced variables z = A y ------------------
+# The stencil unknowns y (3-vectors: positions per node for translation-only normals, or
+# (x_a, θ_a, x_b, θ_b) for ``director``) enter each gap only through a few differences z = A y
+# (d = x_b − x_a, chords c = x_{i+1} − x_{i−1}, rotations θ). Kernels work on z: fewer complex
+# steps, and ∇_y g = Aᵀ∇_z g, ∇²_y g = Aᵀ ∇²_z g A exactly.
 
 
-def _frozen(y, data):
-    xa, xb = y[..., 0:3], y[..., 3:6]
-    n = np.broadcast_to(data["n0"], xa.shape)
-    return _dot(xb - xa, n), np.concatenate([-n, n], -1), n
+def _frozen(z, data):
+    n = np.broadcast_to(data["n0"], z.shape)
+    return _dot(z, n), n, n
 
 
-def _neighbour_point(y, data):
-    xa, xb, am, ap, bm, bp = (y[..., 3 * i : 3 * i + 3] for i in range(6))
-    d = xb - xa
-    n, gd, g_ca, g_cb = _cross_normal_gradient(d, ap - am, bp - bm, data["sign"])
-    return _dot(d, n), np.concatenate([-gd, gd, -g_ca, g_ca, -g_cb, g_cb], -1), n
+def _neighbour_point(z, data):
+    d, ca, cb = z[..., 0:3], z[..., 3:6], z[..., 6:9]
+    n, gd, g_ca, g_cb = _cross_normal_gradient(d, ca, cb, data["sign"])
+    return _dot(d, n), np.concatenate([gd, g_ca, g_cb], -1), n
 
 
-def _neighbour_line(y, data):
-    xa, xb, am, ap = (y[..., 3 * i : 3 * i + 3] for i in range(4))
-    d = xb - xa
-    n, gd, gc = _projected_normal_gradient(d, ap - am)
-    return _dot(d, n), np.concatenate([-gd, gd, -gc, gc], -1), n
+def _neighbour_line(z, data):
+    d, c = z[..., 0:3], z[..., 3:6]
+    n, gd, gc = _projected_normal_gradient(d, c)
+    return _dot(d, n), np.concatenate([gd, gc], -1), n
 
 
-def _director_point(y, data):
-    xa, ta, xb, tb = (y[..., 3 * i : 3 * i + 3] for i in range(4))
+def _director_point(z, data):
+    d, ta, tb = z[..., 0:3], z[..., 3:6], z[..., 6:9]
     t0 = data["t0"]
-    ca = np.einsum("...ij,...j->...i", rotation_matrix(ta), t0[..., 0, :])
-    cb = np.einsum("...ij,...j->...i", rotation_matrix(tb), t0[..., 1, :])
-    d = xb - xa
+    coef_a, coef_b = _rotation_coefficients(ta), _rotation_coefficients(tb)
+    ca = _rotate(ta, coef_a, t0[..., 0, :])
+    cb = _rotate(tb, coef_b, t0[..., 1, :])
     n, gd, g_ca, g_cb = _cross_normal_gradient(d, ca, cb, data["sign"])
     # δc = δω × c with δω = T(θ)δθ  ⇒  ∂g/∂θ = Tᵀ (c × ∂g/∂c)
-    g_ta = np.einsum("...ji,...j->...i", tangent_map(ta), np.cross(ca, g_ca))
-    g_tb = np.einsum("...ji,...j->...i", tangent_map(tb), np.cross(cb, g_cb))
-    return _dot(d, n), np.concatenate([-gd, g_ta, gd, g_tb], -1), n
+    g_ta = _tangent_map_transpose(ta, coef_a, _cross(ca, g_ca))
+    g_tb = _tangent_map_transpose(tb, coef_b, _cross(cb, g_cb))
+    return _dot(d, n), np.concatenate([gd, g_ta, g_tb], -1), n
 
 
-def _director_line(y, data):
-    xa, ta, xb = y[..., 0:3], y[..., 3:6], y[..., 6:9]
-    c = np.einsum("...ij,...j->...i", rotation_matrix(ta), data["t0"][..., 0, :])
-    d = xb - xa
+def _director_line(z, data):
+    d, ta = z[..., 0:3], z[..., 3:6]
+    coef = _rotation_coefficients(ta)
+    c = _rotate(ta, coef, data["t0"][..., 0, :])
     n, gd, gc = _projected_normal_gradient(d, c)
-    g_ta = np.einsum("...ji,...j->...i", tangent_map(ta), np.cross(c, gc))
-    return _dot(d, n), np.concatenate([-gd, g_ta, gd, np.zeros_like(gd)], -1), n
+    g_ta = _tangent_map_transpose(ta, coef, _cross(c, gc))
+    return _dot(d, n), np.concatenate([gd, g_ta], -1), n
+
+
+def _difference_map(rows: list[tuple[int, int]], n_blocks: int) -> npt.NDArray[np.float64]:
+    """A (3·len(rows), 3·n_blocks): row block r is y[plus] − y[minus] (minus < 0: y[plus])."""
+    A = np.zeros((3 * len(rows), 3 * n_blocks))
+    eye = np.eye(3)
+    for r, (plus, minus) in enumerate(rows):
+        A[3 * r : 3 * r + 3, 3 * plus : 3 * plus + 3] += eye
+        if minus >= 0:
+            A[3 * r : 3 * r + 3, 3 * minus : 3 * minus + 3] -= eye
+    return A
 
 
 _Kernel = Callable[[np.ndarray, dict], tuple[np.ndarray, np.ndarray, np.ndarray]]
 
-#: (normal, line pair?) -> (kernel, stencil node roles, stencil dofs used by y)
-_KERNELS: dict[tuple[str, bool], _Kernel] = {
-    ("frozen", False): _frozen,
-    ("frozen", True): _frozen,
-    ("neighbour", False): _neighbour_point,
-    ("neighbour", True): _neighbour_line,
-    ("director", False): _director_point,
-    ("director", True): _director_line,
+#: (normal, line pair?) -> (kernel on z, the map A from y to z)
+_KERNELS: dict[tuple[str, bool], tuple[_Kernel, npt.NDArray[np.float64]]] = {
+    # y = (x_a, x_b)
+    ("frozen", False): (_frozen, _difference_map([(1, 0)], 2)),
+    ("frozen", True): (_frozen, _difference_map([(1, 0)], 2)),
+    # y = (x_a, x_b, x_a−, x_a+, x_b−, x_b+): z = (d, c_a, c_b)
+    ("neighbour", False): (_neighbour_point, _difference_map([(1, 0), (3, 2), (5, 4)], 6)),
+    # y = (x_a, x_b, x_a−, x_a+): z = (d, c)
+    ("neighbour", True): (_neighbour_line, _difference_map([(1, 0), (3, 2)], 4)),
+    # y = (x_a, θ_a, x_b, θ_b): z = (d, θ_a, θ_b) or (d, θ_a)
+    ("director", False): (_director_point, _difference_map([(2, 0), (1, -1), (3, -1)], 4)),
+    ("director", True): (_director_line, _difference_map([(2, 0), (1, -1)], 4)),
 }
 
 
@@ -252,7 +300,7 @@ def gap_derivatives(
         hessian_where: selects, from the gaps, the pairs whose Hessian is needed (the closed
             ones: it enters the tangent multiplied by the normal force); None computes none.
     """
-    kernel = _KERNELS[(normal, line)]
+    kernel, A = _KERNELS[(normal, line)]
     n_pairs, k, _ = positions.shape
     if normal == "director":
         y = np.concatenate(
@@ -260,10 +308,11 @@ def gap_derivatives(
         )
     else:
         y = positions.reshape(n_pairs, 3 * k)
-    value, grad_y, n = kernel(y, data)
+    z = y @ A.T
+    value, grad_z, n = kernel(z, data)
     idx = _unknown_dofs(normal, k)
     gradient = np.zeros((n_pairs, 6 * k))
-    gradient[:, idx] = grad_y
+    gradient[:, idx] = grad_z @ A
     gap = value - data["g0"]
     sel = np.zeros(0, dtype=np.intp)
     if hessian_where is not None and normal != "frozen":
@@ -271,8 +320,10 @@ def gap_derivatives(
     m = y.shape[1]
     h = np.zeros((len(sel), m, m))
     if len(sel):
-        yc = y[sel, None, :] + 1j * _EPS * np.eye(m)  # (S, m perturbations, m)
+        mz = z.shape[1]
+        zc = z[sel, None, :] + 1j * _EPS * np.eye(mz)  # (S, mz perturbations, mz)
         sub = {key: (v[sel, None] if np.ndim(v) else v) for key, v in data.items() if key != "n0"}
-        _, gc, _ = kernel(yc, sub)
-        h = np.imag(gc).transpose(0, 2, 1) / _EPS  # h[s, i, j] = ∂²g/∂y_i∂y_j
+        _, gc, _ = kernel(zc, sub)
+        h_z = np.imag(gc) / _EPS  # h_z[s, j, i] = ∂²g/∂z_j∂z_i (symmetric)
+        h = A.T @ h_z @ A  # ∂²g/∂y²
     return GapDerivatives(gap, n, gradient, sel, idx, h)

@@ -1,0 +1,62 @@
+"""The whole Cardinal case (the default of ``strand run``): time, steps, Newton iterations.
+
+Run: .venv/bin/python benchmarks/cardinal.py [case.toml]
+Runs the case with all its outputs (XDMF, CSV, figures) and prints total time, steps, Newton
+iterations, time per iteration split into assembly, contact and LU, and peak memory. Target on the
+2-core development machines: the whole case in under 3 minutes.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import io
+import resource
+import sys
+import time
+
+from strand.case import load_case
+from strand.run import run_case
+
+
+def main(case_file: str | None = None) -> None:
+    case = load_case(case_file)
+    t0 = time.perf_counter()
+    log = io.StringIO()
+    result = run_case(case, "results/benchmark_cardinal", stream=log)
+    total = time.perf_counter() - t0
+    tm = result.timings
+    its = max(result.iterations, 1)
+    callbacks = tm["residual"] + tm["jacobian"]
+    contact = tm["terms"] + tm["insert"]
+    lu = tm["solve"] - callbacks
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    stages = {}
+    for s in result.steps:
+        stages.setdefault(s["stage"], []).append(s["iterations"])
+    print(f"{case.cable.name}, L = {case.mesh.length} m, normal = {case.contact.normal}")
+    print(f"{'stage':10s} {'steps':>5s} {'Newton its':>10s}  iterations per step")
+    for stage, its_list in stages.items():
+        print(f"{stage:10s} {len(its_list):5d} {sum(its_list):10d}  {its_list}")
+    cuts = sum(s["cuts"] for s in result.steps)
+    rows = [
+        ("total wall time (s)", f"{total:.1f}"),
+        ("  set-up: mesh, forms, pattern (s)", f"{result.setup_seconds:.1f}"),
+        ("  Newton solves (s)", f"{tm['solve']:.1f}"),
+        ("  outputs and figures (s)", f"{total - result.setup_seconds - tm['solve']:.1f}"),
+        ("converged steps / failed attempts", f"{len(result.steps)} / {cuts}"),
+        ("Newton iterations (converged steps)", f"{result.iterations}"),
+        ("time per iteration (s)", f"{tm['solve'] / its:.2f}"),
+        ("  beam assembly share", f"{100 * (callbacks - contact) / tm['solve']:.1f} %"),
+        ("  contact share", f"{100 * contact / tm['solve']:.1f} %"),
+        ("  LU share", f"{100 * lu / tm['solve']:.1f} %"),
+        ("peak memory (MiB)", f"{peak:.0f}"),
+        ("outcome", "FAILED: " + result.failure if result.failure else "completed"),
+    ]
+    for name, value in rows:
+        print(f"{name:38s} {value}")
+    print(f"whole case / 3-minute target: {total / 180:.2f}")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:2])

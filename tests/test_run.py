@@ -1,0 +1,120 @@
+"""The main job: case settings, the runner's outputs, and the analytical references it reports."""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+
+import strand  # noqa: F401
+
+from strand.cable import cardinal  # isort: skip
+from strand.case import CaseError, load_case  # isort: skip
+from strand.cli import main  # isort: skip
+from strand.post import bending_stiffness_bounds, fibre_model  # isort: skip
+
+SEVEN_WIRE = """
+[cable]
+name = "1+6"
+[cable.core]
+diameter = 3.34e-3
+E = 210e9
+nu = 0.3
+friction = 0.3
+[[cable.layer]]
+wires = 6
+diameter = 3.34e-3
+E = 180e9
+nu = 0.3
+lay_angle = 6.06
+lay = "S"
+friction = 0.5
+
+[mesh]
+length = 0.1
+[load]
+tension = 10e3
+lateral = 300.0
+cycle = [1.0, 0.0]
+[steps]
+tension = 5e3
+lateral = 100.0
+lateral_max = 150.0
+[output]
+plots = false
+"""
+
+
+def test_default_case_is_the_seed_papers_test():
+    case = load_case()
+    assert case.cable.name.startswith("Cardinal") and case.mesh.length == 1.0
+    assert case.load.tension == 40e3 and case.load.lateral == 4.3e3
+    assert case.load.cycle == (1.0, 0.0, -1.0, 0.0) and case.load.saddle_length == 0.02
+    assert case.contact.normal == "director" and case.contact.friction
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("[contact]\nnormal = 'radial'\n", "normal 'radial' is unknown"),
+        ("[contact]\nkn = 1e7\n", r"unknown setting\(s\) in \[contact\]: \['kn'\]"),
+        ("[load]\ntension = 'big'\n", r"\[load\] tension = 'big': expected a number"),
+        ("[load]\ncycle = []\n", "expected at least one lateral target"),
+        ("[load]\ndirection = [0, 0, 1]\n", "a direction across the strand axis"),
+        ("[steps]\nmax_iterations = 2.5\n", "expected a whole number"),
+        ("[steps]\nlateral = 500.0\n", "exceeds lateral_max"),
+        ("[steps]\ntolerance = -1\n", r"\[steps\] tolerance = -1: expected a positive number"),
+        ("[output]\nplots = 1\n", "expected true or false"),
+        ("[solver]\natol = 1\n", r"unknown setting\(s\) \['solver'\]"),
+    ],
+)
+def test_bad_settings_are_named_before_computing(tmp_path, capsys, text, message):
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    with pytest.raises(CaseError, match=message):
+        load_case(path)
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "case.toml" in err and "Traceback" not in err
+    assert not (tmp_path / "out").exists()  # nothing computed, nothing written
+
+
+def test_fibre_model_and_stiffness_bounds_match_the_reference_numbers():
+    """physics.md C(b), C(c): EA = 39.44 MN, ε(40 kN) = 1014 µε, wire forces 1866/1582/546/547/541 N,
+    EI_min = 28.81 N m², EI_max = 1800 N m²."""
+    ref = fibre_model(cardinal(), 40e3)
+    assert ref["EA"] == pytest.approx(39.44e6, rel=2e-3)
+    assert ref["strain"] == pytest.approx(1014e-6, rel=2e-3)
+    assert np.allclose(ref["wire_force"], [1866, 1582, 546, 547, 541], rtol=3e-3)
+    ei_min, ei_max = bending_stiffness_bounds(cardinal())
+    assert ei_min == pytest.approx(28.81, rel=2e-3)
+    assert ei_max == pytest.approx(1800, rel=2e-3)
+
+
+def test_run_writes_every_output_and_balances_the_section(tmp_path, capsys):
+    case = tmp_path / "seven.toml"
+    case.write_text(SEVEN_WIRE)
+    out = tmp_path / "out"
+    assert main(["run", str(case), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "[" in text and "Newton its" in text and "done:" in text
+    for name in ("fields.xdmf", "fields.h5", "steps.csv", "axial_forces.csv",
+                 "moment_curvature.csv", "summary.txt", "settings.txt"):  # fmt: skip
+        assert (out / name).stat().st_size > 0, name
+    with open(out / "steps.csv") as f:
+        steps = list(csv.DictReader(f))
+    assert float(steps[-1]["lateral_N"]) == 0.0
+    assert max(float(s["lateral_N"]) for s in steps) == pytest.approx(300.0)
+    assert all(float(s["tension_N"]) == pytest.approx(10e3) for s in steps[2:])
+    # deflection grows with the load and a loop remains (friction): δ(0, unloaded) ≥ 0
+    loaded = [float(s["deflection_m"]) for s in steps if s["stage"] == "leg 1"]
+    assert np.all(np.diff(loaded) > 0)
+    forces = np.loadtxt(out / "axial_forces.csv", delimiter=",", skiprows=1)
+    assert len(np.unique(forces[:, 0])) == len(steps)
+    # the section at midspan carries exactly the tension (moment-curvature file)
+    mk = np.loadtxt(out / "moment_curvature.csv", delimiter=",", skiprows=1, ndmin=2)
+    assert np.allclose(mk[:, 4], 10e3, rtol=1e-6)
+    assert np.all(mk[np.argmax(mk[:, 1]), 2:4] > 0)  # positive load: positive κ and M
+    summary = (out / "summary.txt").read_text()
+    assert "fibre model" in summary and "wire force layer 1" in summary

@@ -146,7 +146,8 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
     peak_load = 0.0
 
     def on_step(rec: StepRecord) -> None:
-        nonlocal peak_load
+        nonlocal peak_load, output_seconds
+        t_out = time.perf_counter()
         k = len(result.steps) + 1
         row = {
             "step": k,
@@ -179,6 +180,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
                 result.peak_w = problem.w.x.array.copy()
         if writer is not None:
             writer.write(float(k))
+        output_seconds += time.perf_counter() - t_out
         # progress
         if rec.stage == "tension":
             progress.done = tension_weight * abs(problem.tension / case.load.tension)
@@ -191,6 +193,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         progress.step(rec.stage, load, unit, label, rec.iterations, rec.cuts, extra)
 
     previous = [0.0]
+    output_seconds = 0.0
     steps = case.steps
     try:
         tension = LoadStepper(
@@ -219,7 +222,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         if writer is not None:
             writer.close()
     result.seconds = time.perf_counter() - t_start
-    result.timings = dict(problem.solver.timings)
+    result.timings = dict(problem.solver.timings, output=output_seconds)
     summary = summarize(case, result, problem)
     (folder / "summary.txt").write_text(summary)
     print(summary, file=stream, flush=True)

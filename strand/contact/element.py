@@ -301,6 +301,11 @@ def contact_groups(
         nodes["b-"], nodes["b+"] = _neighbours(geometry, b)
         roles = stencil_nodes(settings.normal, line)
         points = np.stack([nodes[r] for r in roles], axis=1)
+        if np.any(input_to_block[points] < 0):
+            raise NotImplementedError(
+                "contact pairs whose nodes are not all on this process: strand's contact runs "
+                "serially for now (pair ownership with a slab partitioner is the way to MPI)"
+            )
         stiffness = (
             settings.k_line * pairs.tributary[sel] if line else np.full(len(sel), settings.k_point)
         )

@@ -345,6 +345,7 @@ def test_helix_on_core_line_load():
     z = geometry.points[pairs.b, 2]
     inside = np.abs(z - geometry.length / 2) < geometry.length / 4
     X = res["force"][inside].sum() / pairs.tributary[inside].sum()  # N per m of wire
+    print(f"X = {X:.1f} N/m, T sin²α/r = {T_wire * np.sin(alpha) ** 2 / r:.1f} N/m")
     assert X == pytest.approx(T_wire * np.sin(alpha) ** 2 / r, rel=0.02)
     assert T_wire == pytest.approx(20e3 / 7, rel=0.2)  # sanity: the wires share the load
 

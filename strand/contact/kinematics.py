@@ -116,7 +116,11 @@ def _cross(u, v):
     """u × v over the last axis (cheaper than np.cross for many small vectors)."""
     u0, u1, u2 = u[..., 0], u[..., 1], u[..., 2]
     v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
-    return np.stack([u1 * v2 - u2 * v1, u2 * v0 - u0 * v2, u0 * v1 - u1 * v0], axis=-1)
+    out = np.empty(np.broadcast_shapes(u.shape, v.shape), dtype=np.result_type(u, v))
+    out[..., 0] = u1 * v2 - u2 * v1
+    out[..., 1] = u2 * v0 - u0 * v2
+    out[..., 2] = u0 * v1 - u1 * v0
+    return out
 
 
 def _rotate(theta, coefficients, v):
@@ -271,7 +275,14 @@ class GapDerivatives:
             pos = (
                 self.hessian_dofs if layout is None else np.searchsorted(layout, self.hessian_dofs)
             )
-            K[np.ix_(s, pos, pos)] += scale[s, None, None] * self.hessian
+            contribution = scale[s, None, None] * self.hessian
+            if len(pos) == K.shape[1]:  # the Hessian fills the whole block: no inner gather
+                if len(s) == len(K):
+                    K += contribution
+                else:
+                    K[s] += contribution
+            else:
+                K[np.ix_(s, pos, pos)] += contribution
 
     def full_hessian(self) -> Array:
         """∂²g/∂q² as a dense (P, 6k, 6k) array (for tests)."""
@@ -310,9 +321,11 @@ def gap_derivatives(
         y = positions.reshape(n_pairs, 3 * k)
     z = y @ A.T
     value, grad_z, n = kernel(z, data)
+    # every unknown y_i enters one z_j with a sign (A has one ±1 per column, or none): gathers
+    zmap, zsign = np.abs(A).argmax(axis=0), A.max(axis=0) + A.min(axis=0)
     idx = _unknown_dofs(normal, k)
     gradient = np.zeros((n_pairs, 6 * k))
-    gradient[:, idx] = grad_z @ A
+    gradient[:, idx] = grad_z[:, zmap] * zsign
     gap = value - data["g0"]
     sel = np.zeros(0, dtype=np.intp)
     if hessian_where is not None and normal != "frozen":
@@ -325,5 +338,5 @@ def gap_derivatives(
         sub = {key: (v[sel, None] if np.ndim(v) else v) for key, v in data.items() if key != "n0"}
         _, gc, _ = kernel(zc, sub)
         h_z = np.imag(gc) / _EPS  # h_z[s, j, i] = ∂²g/∂z_j∂z_i (symmetric)
-        h = A.T @ h_z @ A  # ∂²g/∂y²
+        h = h_z[:, zmap][:, :, zmap] * np.outer(zsign, zsign)  # ∂²g/∂y² = Aᵀ h_z A
     return GapDerivatives(gap, n, gradient, sel, idx, h)

@@ -9,7 +9,7 @@
 
 # # A strand under tension and bending, wire by wire
 #
-# This demo runs a short version of strand's main job: a 0.2 m piece of the Cardinal ACSR
+# This demo runs a short version of strand's main job: a 0.4 m piece of the Cardinal ACSR
 # conductor (61 wires in five layers), pulled to 40 kN, then bent back and forth by a saddle load
 # at midspan. Every wire is a geometrically exact Reissner beam; wires touch at fixed node pairs
 # (small sliding) with a penalty normal force and Coulomb friction, the seed paper's element.
@@ -21,7 +21,14 @@ import strand  # noqa: F401  (loads the dolfinx wheel's libraries before mpi4py/
 
 # isort: split
 
-import numpy as np
+import tomllib
+from importlib import resources
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 from strand.case import case_from_dict
 from strand.post import fibre_model
@@ -32,18 +39,16 @@ from strand.run import run_case
 # ## The case
 #
 # A case is a handful of settings over strand's defaults (`strand run --help` lists them all).
-# Here: the built-in Cardinal cable, a 0.2 m span, and a lateral cycle of ±1 kN. The same table
+# Here: the built-in Cardinal cable, a 0.4 m span, and a lateral cycle of ±1.5 kN. The same table
 # in a TOML file gives the same run from the command line: `strand run my_case.toml`.
 
-case = case_from_dict(
-    {
-        "cable": "cardinal",
-        "mesh": {"length": 0.2},
-        "load": {"tension": 40e3, "lateral": 1000.0, "cycle": [1.0, 0.0, -1.0, 0.0]},
-        "steps": {"lateral": 250.0},
-    },
-    source="demo",
-)
+settings = {
+    "cable": "cardinal",
+    "mesh": {"length": 0.4},
+    "load": {"tension": 40e3, "lateral": 1500.0, "cycle": [1.0, 0.0, -1.0, 0.0]},
+    "steps": {"lateral": 250.0},
+}
+case = case_from_dict(settings, source="demo")
 print(case.contact)
 
 # ## Run
@@ -55,27 +60,59 @@ print(case.contact)
 
 result = run_case(case, "results/demo_strand_bending")
 
-# ## What came out
+# ## Tension: the fibre model
 #
 # After tensioning, the wire forces agree with the classical fibre model (wires as helical bars
-# stretched by ε cos²α) to within a few per cent; the contact element adds the radial compliance
-# of the contacts that the fibre model ignores.
+# stretched by ε cos²α) to within about 5 %; the rest is the compliance of the penalty contacts,
+# which the fibre model takes as rigid.
 
 reference = fibre_model(case.cable, case.load.tension)
 t = result.tensioned
-middle = np.abs(t.z - 0.1) < 0.05
+middle = np.abs(t.z - 0.2) < 0.1
 for layer, expected in enumerate(reference["wire_force"]):
     model = t.axial[middle & (t.layer == layer)].mean()
     print(f"layer {layer}: {model:7.1f} N (fibre model {expected:7.1f} N)")
-    assert abs(model / expected - 1) < 0.05
+    assert abs(model / expected - 1) < 0.06
 
-# The load–deflection curve is a loop: friction makes the strand stiffer when the load reverses
-# than when it grows, and some deflection remains when the load returns to zero. Pictures are in
-# `results/demo_strand_bending/`: `load_deflection.png`, `moment_curvature.png`,
-# `axial_force_sectors.png`, `axial_force_change.png` and `deformed_axial_force.png`; the fields
-# are in `fields.xdmf` for ParaView.
+# ## Bending: stick, slip and hysteresis
+#
+# On a span this short the layers barely slip at 1.5 kN with the cable's friction coefficients
+# (μ = 0.3 and 0.5): the cycle is nearly elastic. Friction decides it: the same case with μ = 0.05
+# slips, its bending stiffness falls as it is loaded, and a deflection remains when the load comes
+# back to zero: a hysteresis loop.
 
-lateral = [s for s in result.steps if s["stage"] != "tension"]
-at_zero = [s["deflection"] for s in lateral if s["lateral"] == 0.0]
-print("deflection back at P = 0 (mm):", [f"{1e3 * d:+.3f}" for d in at_zero])
-assert not result.failure
+cable = tomllib.loads((resources.files("strand.data") / "cardinal.toml").read_text())
+for table in (cable["core"], *cable["layer"]):
+    table["friction"] = 0.05
+slippery = run_case(
+    case_from_dict({**settings, "cable": cable}, source="demo, μ = 0.05"),
+    "results/demo_strand_bending/low_friction",
+)
+
+fig, ax = plt.subplots(figsize=(6, 4.5))
+for run, label in ((result, "μ = 0.3 / 0.5 (Cardinal)"), (slippery, "μ = 0.05")):
+    lateral = [s for s in run.steps if s["stage"] != "tension"]
+    ax.plot(
+        [0.0] + [1e3 * s["deflection"] for s in lateral],
+        [0.0] + [s["lateral"] / 1e3 for s in lateral],
+        "o-",
+        ms=3,
+        label=label,
+    )
+    residual = [1e3 * s["deflection"] for s in lateral if s["lateral"] == 0.0]
+    peak = max(1e3 * abs(s["deflection"]) for s in lateral)
+    print(f"{label}: peak {peak:.3f} mm, back at P = 0: {residual[0]:+.3f}, {residual[1]:+.3f} mm")
+ax.set_xlabel("midspan deflection (mm)")
+ax.set_ylabel("lateral load (kN)")
+ax.legend()
+ax.grid(alpha=0.3)
+fig.savefig("results/demo_strand_bending/loops.png", dpi=110)
+
+lateral = [s for s in slippery.steps if s["stage"] != "tension"]
+assert abs(lateral[-1]["deflection"]) > 0.05 * max(abs(s["deflection"]) for s in lateral)
+assert not result.failure and not slippery.failure
+
+# The pictures are in `results/demo_strand_bending/`: `loops.png` above, and for each run
+# `load_deflection.png`, `moment_curvature.png`, `axial_force_sectors.png`,
+# `axial_force_change.png` and `deformed_axial_force.png`; the fields are in `fields.xdmf` for
+# ParaView.

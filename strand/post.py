@@ -23,6 +23,7 @@ from .cable import Cable  # isort: skip
 from .problem import StrandProblem  # isort: skip
 
 __all__ = [
+    "CellEvaluator",
     "CellResults",
     "cell_results",
     "sector_of",
@@ -49,7 +50,7 @@ class CellResults:
     moment: Array
 
 
-class _CellEvaluator:
+class CellEvaluator:
     """Evaluates cell-wise beam quantities (DG0) and maps them to the geometry's cell order."""
 
     def __init__(self, problem: StrandProblem):
@@ -78,10 +79,10 @@ def sector_of(phi_deg: Array, sectors: int = 8) -> npt.NDArray[np.int32]:
     return (np.floor((np.asarray(phi_deg) + 180.0) / width).astype(np.int32)) % sectors
 
 
-def cell_results(problem: StrandProblem, evaluator: _CellEvaluator | None = None) -> CellResults:
+def cell_results(problem: StrandProblem, evaluator: CellEvaluator | None = None) -> CellResults:
     """Axial forces and section resultants of every element, with its wire, layer, z and φ."""
     g = problem.geometry
-    evaluator = evaluator or _CellEvaluator(problem)
+    evaluator = evaluator or CellEvaluator(problem)
     values = evaluator()
     x = g.points + problem.nodal[problem.i2b[np.arange(len(g.points))], :3]
     mid = x[g.cells].mean(axis=1)

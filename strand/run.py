@@ -27,7 +27,7 @@ from .geometry import build_geometry  # isort: skip
 from .output import FieldWriter, cell_function  # isort: skip
 from .post import (  # isort: skip
     CellResults,
-    _CellEvaluator,
+    CellEvaluator,
     bending_stiffness_bounds,
     cell_results,
     fibre_model,
@@ -109,7 +109,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         saddle_length=case.load.saddle_length,
         direction=case.load.direction,
     )
-    evaluator = _CellEvaluator(problem)
+    evaluator = CellEvaluator(problem)
     n_cells = len(geometry.cells)
     print(
         f"{case.cable.name}: L = {case.mesh.length:g} m, {len(geometry.wire_layer)} wires, "

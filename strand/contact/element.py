@@ -23,7 +23,7 @@ import numpy.typing as npt
 
 from ..cable import CableError
 from ..geometry import LINE, POINT, StrandGeometry
-from .kinematics import NORMALS, gap_derivatives, stencil_nodes
+from .kinematics import NORMALS, gap_derivatives, skew, stencil_nodes
 from .laws import coulomb_return, normal_force, tangential_stiffness
 
 __all__ = ["ContactSettings", "ContactGroup", "ContactState", "contact_groups"]
@@ -91,18 +91,6 @@ class ContactState:
     traction: Array
     normal: Array
     slipping: npt.NDArray[np.bool_]
-
-
-def _skew(v):
-    z = np.zeros(len(v))
-    return np.stack(
-        [
-            np.stack([z, -v[:, 2], v[:, 1]], -1),
-            np.stack([v[:, 2], z, -v[:, 0]], -1),
-            np.stack([-v[:, 1], v[:, 0], z], -1),
-        ],
-        -2,
-    )
 
 
 class ContactGroup:
@@ -201,7 +189,7 @@ class ContactGroup:
     def _build_slip_operator(self) -> Array:
         n = self._n_old
         P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
-        N = _skew(n)
+        N = skew(n)
         return np.concatenate(
             [-P_n, self.r_a[:, None, None] * N, P_n, self.r_b[:, None, None] * N], axis=2
         )

@@ -40,7 +40,7 @@ __all__ = [
     "stencil_nodes",
     "gap_derivatives",
     "rotation_matrix",
-    "tangent_map",
+    "skew",
 ]
 
 Array = npt.NDArray[np.float64]
@@ -86,7 +86,8 @@ def _rotation_coefficients(theta):
     return coefficients
 
 
-def _skew(v):
+def skew(v):
+    """The matrix v× of the cross product with v (..., 3, 3)."""
     z = np.zeros_like(v[..., 0])
     return np.stack(
         [
@@ -101,15 +102,8 @@ def _skew(v):
 def rotation_matrix(theta):
     """R(θ) = I + a θ× + b θ×² for rotation vectors θ (..., 3), the beam's nodal rotation."""
     a, b, _ = _rotation_coefficients(theta)
-    W = _skew(theta)
+    W = skew(theta)
     return np.eye(3) + a[..., None, None] * W + b[..., None, None] * (W @ W)
-
-
-def tangent_map(theta):
-    """T(θ) = I + b θ× + c θ×²: the spatial spin of an increment, δω = T(θ) δθ."""
-    _, b, c = _rotation_coefficients(theta)
-    W = _skew(theta)
-    return np.eye(3) + b[..., None, None] * W + c[..., None, None] * (W @ W)
 
 
 def _cross(u, v):

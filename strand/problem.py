@@ -22,7 +22,8 @@ from mpi4py import MPI  # isort: skip
 
 from forms import CircularSection, ReissnerBeam  # isort: skip
 
-from .contact.element import ContactGroup, ContactSettings, contact_groups  # isort: skip
+from .contact.element import ContactSettings, contact_groups  # isort: skip
+from .contact.sliding import sliding_groups  # isort: skip
 from .geometry import StrandGeometry  # isort: skip
 from .mesh import CableMesh, beam_space, cable_mesh, input_to_block  # isort: skip
 from .solver import NewtonOptions, NewtonSolver, NodalLoad  # isort: skip
@@ -177,7 +178,13 @@ class StrandProblem:
             saddles.append(NodalLoad(i2b[near[idx]], values))
         self.loads = StrandLoads(tension, *saddles)
 
-        self.contact: list[ContactGroup] = contact_groups(geometry, i2b, self.contact_settings)
+        cs = self.contact_settings
+        if cs.model == "large":
+            self.contact = sliding_groups(
+                geometry, i2b, cs.k_point, cs.k_line, cs.g_lim, cs.friction, cs.reach
+            )
+        else:
+            self.contact = contact_groups(geometry, i2b, cs)
         # MUMPS ordering: PORD factorises the Cardinal tangent in 0.53 s against 0.71 s for the
         # default choice (METIS), the same accuracy (2-core machine, 129,492 unknowns)
         options = options or NewtonOptions()

@@ -49,6 +49,9 @@ class ContactSettings:
             line pair gets k_line × its tributary length.
         g_lim: slip at which friction reaches μP (elastic slip, K_T = μP/g_lim), m.
         friction: use the Coulomb coefficients of the cable (False: frictionless).
+        model: "small" sliding (pairs fixed at t = 0, this module) or "large" sliding (pairs
+            re-projected at every iteration, ``strand.contact.sliding``: the baseline).
+        reach: large sliding only: segments reserved either side of each initial pair.
     """
 
     normal: str = "auto"
@@ -56,6 +59,8 @@ class ContactSettings:
     k_line: float = 5e9
     g_lim: float = 5e-6
     friction: bool = True
+    model: str = "small"
+    reach: int = 1
 
     def __post_init__(self):
         if self.normal == "auto":
@@ -64,6 +69,10 @@ class ContactSettings:
             raise CableError(
                 f"contact normal {self.normal!r} is unknown; choose auto, {', '.join(NORMALS)}"
             )
+        if self.model not in ("small", "large"):
+            raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
+        if not (isinstance(self.reach, int) and self.reach >= 1):
+            raise CableError(f"contact reach = {self.reach!r}: must be a whole number ≥ 1")
         for name in ("k_point", "k_line", "g_lim"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):

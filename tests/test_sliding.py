@@ -28,7 +28,10 @@ def dragged_pair(angle_deg: float = 90.0, reach: int = 3, mu: float = 0.0):
     X = np.vstack([xa, xb])[None]
     stencil = np.arange(2 * na)[None]
     ends = np.zeros((1, 4), dtype=bool)
-    group = SlidingGroup(stencil, X, na, False, [[reach, reach]], [K_N], [mu], 5e-6, wire_end=ends)
+    group = SlidingGroup(
+        stencil, X, na, False, [[reach, reach]], [K_N], [mu], 5e-6, wire_end=ends,
+        radius_a=R, radius_b=R,
+    )  # fmt: skip
     return group, na
 
 
@@ -43,8 +46,8 @@ def test_normal_tangent_is_exact_while_the_point_slides():
     assert group.state.force[0] > 0
     step = 1e-9
     K_fd = np.zeros_like(K)
-    for j, dof in enumerate(group.dofs):
-        node, comp = divmod(int(dof), 6)
+    for j in range(K.shape[2]):
+        node, comp = divmod(j, 6)
         wp, wm = w.copy(), w.copy()
         wp[node, comp] += step
         wm[node, comp] -= step
@@ -82,14 +85,16 @@ def test_a_beam_dragged_along_another_follows_across_segments(angle):
 
 def test_large_and_small_sliding_agree_when_sliding_is_small():
     """1+6 strand, 0.2 m, 40 kN then a 600 N saddle load: same end displacement, deflection and
-    contact forces within a few per cent (the wires slide by micrometres)."""
+    contact forces within a few per cent (the wires slide by micrometres). Tolerance 1e-2 N as in
+    strand run: large sliding chatters at ~1e-2 N when a contact point sits on a node shared by two
+    segments (every crossing starts there)."""
     from test_contact import seven_wire
 
     geometry = seven_wire(length=0.2)
     results = {}
     for model in ("small", "large"):
         problem = StrandProblem(
-            geometry, ContactSettings(model=model), NewtonOptions(atol=1e-3, max_it=15)
+            geometry, ContactSettings(model=model), NewtonOptions(atol=1e-2, max_it=15)
         )
         LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.set_tension, 0.0, 40e3)
         u_tension = problem.end_displacement()

@@ -6,16 +6,17 @@ initial pair (``reach`` segments either side), so a pair moves from segment to s
 wires slide. Crossings use segment-to-segment closest points; line pairs (core | layer 1) project
 the layer-1 node onto the core's polyline. The gap is the distance of the closest points minus its
 initial value (so g ≡ 0 at t = 0), the normal their direction. The same laws as the small-sliding
-element apply (penalty, Coulomb radial return with K_T = μP₀/g_lim); slip is the relative motion of
-the two material points currently in contact since the last converged step, measured on the
-centrelines and in the plane normal to n (frozen over the step).
+element apply (penalty, Coulomb radial return with K_T = μP₀/g_lim), and the same slip measure:
+the relative motion of the two surface points currently in contact since the last converged step
+(translations and rotations interpolated at the closest points, lever arms r n), in the plane
+normal to n frozen over the step.
 
 Tangent: the normal part is exact — the closest-point parameters come from the closed-form
 projection, complex-analytic, so the complex step of the hand-written gradient gives the Hessian
 including ∂ξ/∂q. The friction part ignores the motion of the contact point within a step
 (good enough for Newton; its quadratic rate is lost while points slide).
 
-The pattern reserves the whole window (translations only), so segment changes need no new
+The pattern reserves the whole window, so segment changes need no new
 non-zeros; a pair whose closest point wants to leave its window raises an error naming it.
 Units: m, N.
 """
@@ -27,6 +28,7 @@ import numpy.typing as npt
 
 from ..geometry import LINE, StrandGeometry
 from .element import ContactState
+from .kinematics import skew
 from .laws import coulomb_return, normal_force, tangential_stiffness
 
 __all__ = ["SlidingGroup", "sliding_groups", "closest_parameters", "SlidingWindowError"]
@@ -112,16 +114,18 @@ class SlidingGroup:
         initial_positions: (P, na + nb, 3), m.
         na: nodes of wire a per window; line: line pairs (node b against the core).
         start: (P, 2) the segment of each window holding the initial pair (a, b).
-        stiffness, mu: per pair; g_lim: m.
+        stiffness, mu: per pair; g_lim: m; radius_a, radius_b: wire radii (lever arms of the
+            surface points), m.
     """
 
     def __init__(self, stencils, initial_positions, na: int, line: bool, start, stiffness, mu,
-                 g_lim: float, index=None, wire_end=None):  # fmt: skip
+                 g_lim: float, index=None, wire_end=None, radius_a=0.0, radius_b=0.0):  # fmt: skip
         self.stencils = np.ascontiguousarray(stencils, dtype=np.int32)
         n_pairs, k = self.stencils.shape
         self.X = np.asarray(initial_positions, dtype=float)
         self.na, self.nb, self.line = na, k - na, line
-        self.dofs = (6 * np.arange(k)[:, None] + np.arange(3)).ravel()  # translations only
+        self.r_a = np.broadcast_to(np.asarray(radius_a, float), (n_pairs,))
+        self.r_b = np.broadcast_to(np.asarray(radius_b, float), (n_pairs,))
         self.k_n = np.asarray(stiffness, float)
         self.mu = np.asarray(mu, float)
         self.g_lim = g_lim
@@ -136,7 +140,7 @@ class SlidingGroup:
         self._t_old = np.zeros((n_pairs, 3))
         self._p_old = np.zeros(n_pairs)
         self._n_old = self._last_n.copy()
-        self._x_old = self.X.copy()  # window positions at the last converged step
+        self._w_old = np.zeros((n_pairs, k, 6))  # window unknowns at the last converged step
         self._committed_segment = self.segment.copy()
         self.state = ContactState(
             np.zeros(n_pairs), np.zeros(n_pairs), np.zeros((n_pairs, 3)), self._n_old.copy(),
@@ -147,23 +151,39 @@ class SlidingGroup:
         return len(self.stencils)
 
     # -- closest points ---------------------------------------------------------------------------
+    #: a pair keeps its segment while its closest point stays within this fraction of a segment
+    #: beyond the segment's ends: contact points start on nodes shared by two segments, and a
+    #: strict choice would flip between them from one iteration to the next
+    HYSTERESIS = 0.05
+
     def _search(self, x: Array) -> None:
-        """Choose, per pair, the segment (pair) of its windows closest to each other."""
-        na = self.na
+        """Choose, per pair, the segment (pair) of its windows closest to each other, keeping the
+        current one while its closest point lies within ``HYSTERESIS`` of it."""
+        na, rows = self.na, np.arange(len(x))
         A0, A1 = x[:, : na - 1], x[:, 1:na]
+        s_a, s_b = self.segment[:, 0], self.segment[:, 1]
         if self.line:
             b = x[:, na]
+            xi_now = _point_segment_parameter(b, A0[rows, s_a], A1[rows, s_a])
+            keep = np.abs(xi_now - 0.5) <= 0.5 + self.HYSTERESIS
             xi = np.clip(_point_segment_parameter(b[:, None], A0, A1), 0.0, 1.0)
             diff = b[:, None] - A0 - xi[..., None] * (A1 - A0)
-            s_a = np.argmin(_dot(diff, diff), axis=1)
-            self.segment = np.column_stack([s_a, np.zeros_like(s_a)])
+            best = np.argmin(_dot(diff, diff), axis=1)
+            self.segment[:, 0] = np.where(keep, s_a, best)
             return
         B0, B1 = x[:, na:-1], x[:, na + 1 :]
+        xi_now, eta_now = closest_parameters(
+            A0[rows, s_a], A1[rows, s_a], B0[rows, s_b], B1[rows, s_b]
+        )
+        keep = (np.abs(xi_now - 0.5) <= 0.5 + self.HYSTERESIS) & (
+            np.abs(eta_now - 0.5) <= 0.5 + self.HYSTERESIS
+        )
         _, _, dist = _clamped_segment_parameters(
             A0[:, :, None], A1[:, :, None], B0[:, None], B1[:, None]
         )
         flat = np.argmin(dist.reshape(len(x), -1), axis=1)
-        self.segment = np.column_stack(np.unravel_index(flat, dist.shape[1:]))
+        best = np.column_stack(np.unravel_index(flat, dist.shape[1:]))
+        self.segment = np.where(keep[:, None], self.segment, best)
 
     def _kinematics(self, x: Array, hessian: bool):
         self._search(x)
@@ -179,7 +199,7 @@ class SlidingGroup:
         # they are held at its end (and the pair is reported at commit)
         probe = kernel(y, np.ones(len(x), bool), np.zeros((len(x), 2)))
         xi, eta = probe[3].real, probe[4].real
-        tol = 1e-9
+        tol = self.HYSTERESIS + 1e-9
         lo_a, hi_a = (s_a == 0) & (xi < -tol), (s_a == self.na - 2) & (xi > 1 + tol)
         held = lo_a | hi_a
         out = (lo_a & ~self.wire_end[:, 0]) | (hi_a & ~self.wire_end[:, 1])
@@ -210,14 +230,14 @@ class SlidingGroup:
     # -- PairTerms ----------------------------------------------------------------------------------
     def evaluate(self, w: Array, jacobian: bool = True):
         n_pairs, k = self.stencils.shape
-        W = w[self.stencils][..., :3]
-        x = self.X + W
+        W = w[self.stencils]  # (P, k, 6)
+        x = self.X + W[..., :3]
         g, grad, n, H = self._kinematics(x, jacobian)
         p, dp_dg = normal_force(g, self.k_n)
-        # scatter the active nodes' 3-vectors into the window layout (3k)
-        cols = (3 * self._nodes[:, :, None] + np.arange(3)).reshape(n_pairs, -1)
+        # scatter the active nodes' translations into the window layout (6k: u, θ per node)
+        cols = (6 * self._nodes[:, :, None] + np.arange(3)).reshape(n_pairs, -1)
         rows = np.arange(n_pairs)[:, None]
-        G = np.zeros((n_pairs, 3 * k))
+        G = np.zeros((n_pairs, 6 * k))
         G[rows, cols] = grad
         f = -p[:, None] * G
         K = None
@@ -231,20 +251,25 @@ class SlidingGroup:
         traction = np.zeros((n_pairs, 3))
         slipping = np.zeros(n_pairs, dtype=bool)
         if np.any(self.mu > 0):
-            # relative motion of the material points in contact since the last converged step
-            N = np.zeros((n_pairs, k))
-            signs = np.r_[-1.0, -1.0, 1.0] if self.line else np.r_[-1.0, -1.0, 1.0, 1.0]
-            N[rows, self._nodes] = self._shape * signs
-            du = x - self._x_old
+            # slip of the surface points in contact since the last converged step, as in the
+            # small-sliding element: P_n[Δu_b − r_b Δθ_b×n − Δu_a − r_a Δθ_a×n], interpolated
+            # with the current closest-point weights; n and the plane frozen over the step
             n0 = self._n_old
             P_n = np.eye(3) - n0[:, :, None] * n0[:, None, :]
-            rel = np.einsum("pk,pki->pi", N, du)
-            slip = np.einsum("pij,pj->pi", P_n, rel)
+            lever = skew(n0)  # −Δθ×(r n) = r (n×) Δθ
+            side = np.r_[-1.0, -1.0, 1.0] if self.line else np.r_[-1.0, -1.0, 1.0, 1.0]
+            radius = np.where(side < 0, self.r_a[:, None], self.r_b[:, None])  # (P, active)
+            S = np.zeros((n_pairs, 3, k, 6))
+            for j in range(self._nodes.shape[1]):
+                node = self._nodes[:, j]
+                weight = self._shape[:, j]
+                S[rows[:, 0], :, node, 0:3] = (side[j] * weight)[:, None, None] * P_n
+                S[rows[:, 0], :, node, 3:6] = (weight * radius[:, j])[:, None, None] * lever
+            S = S.reshape(n_pairs, 3, 6 * k)
+            slip = np.einsum("pij,pj->pi", S, (W - self._w_old).reshape(n_pairs, -1))
             k_t = tangential_stiffness(self.mu, self._p_old, self.g_lim)
             ret = coulomb_return(self._t_old, slip, n0, p, self.mu, k_t)
             traction, slipping = ret.traction, ret.slipping
-            # S = P_n (N ⊗ I): (P, 3, 3k)
-            S = (P_n[:, :, None, :] * N[:, None, :, None]).reshape(n_pairs, 3, 3 * k)
             f += np.einsum("pij,pi->pj", S, traction)
             if jacobian:
                 St = S.transpose(0, 2, 1)
@@ -252,7 +277,7 @@ class SlidingGroup:
                 K += np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure),
                                dp_dg[:, None] * G)  # fmt: skip
         self.state = ContactState(g, p, traction, n, slipping & (p > 0))
-        self._last_x = x
+        self._last_w = W
         return f, K
 
     def commit(self) -> None:
@@ -267,7 +292,7 @@ class SlidingGroup:
         self._t_old = t - _dot(t, n)[:, None] * n
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
-        self._x_old = self._last_x.copy()
+        self._w_old = self._last_w.copy()
         self._committed_segment = self.segment.copy()
 
     def rollback(self) -> None:
@@ -319,6 +344,7 @@ def sliding_groups(
         groups.append(
             SlidingGroup(input_to_block[nodes], geometry.points[nodes], na, line,
                          np.column_stack([start_a, start_b]), stiffness, mu, g_lim, index=sel,
-                         wire_end=np.column_stack([a_ends, b_ends]))
+                         wire_end=np.column_stack([a_ends, b_ends]),
+                         radius_a=pairs.radius_a[sel], radius_b=pairs.radius_b[sel])
         )  # fmt: skip
     return groups

@@ -1,0 +1,112 @@
+"""Small vs large sliding on the same mesh, laws and solver: forces, deflections, cost.
+
+Run: .venv/bin/python benchmarks/sliding_comparison.py [helix|cardinal] [P_max_N]
+(a) helix: a 1+6 strand (Cardinal's core and first layer), 0.2 m, 40 kN, saddle to 600 N;
+(b) cardinal: the full conductor, 1 m, 40 kN, saddle to 4.3 kN (one loading leg).
+Prints, for each model, the Newton iterations and wall time measured in this run, the midspan
+deflection, and per layer the largest difference of the wire axial forces at the largest load
+relative to that layer's force range (and per 45° sector); writes an overlay plot.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from strand.cable import Cable, cardinal
+from strand.contact.element import ContactSettings
+from strand.geometry import build_geometry
+from strand.post import cell_results, sector_of
+from strand.problem import StrandProblem
+from strand.solver import LoadStepper, NewtonOptions
+
+
+def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> dict:
+    t0 = time.perf_counter()
+    problem = StrandProblem(
+        geometry, ContactSettings(model=model), NewtonOptions(atol=1e-2, max_it=15)
+    )
+    setup = time.perf_counter() - t0
+    steps = LoadStepper(problem.solver, tension / 4, tension / 256)
+    steps.ramp(problem.set_tension, 0.0, tension, "tension")
+    lateral = LoadStepper(
+        problem.solver, p_step, p_step / 64, max_step=1.6 * p_step, extrapolate=True
+    )
+    lateral.ramp(problem.set_lateral, 0.0, p_max, "lateral")
+    seconds = time.perf_counter() - t0
+    history = steps.history + lateral.history
+    return {
+        "model": model,
+        "seconds": seconds,
+        "setup": setup,
+        "iterations": sum(r.iterations for r in history),
+        "steps": len(history),
+        "cuts": sum(r.cuts for r in history),
+        "deflection": problem.midspan_deflection(),
+        "cells": cell_results(problem),
+        "nnz": problem.solver.A.getInfo()["nz_used"],
+    }
+
+
+def main(which: str = "helix", p_max: float | None = None) -> None:
+    if which == "helix":
+        c = cardinal()
+        geometry = build_geometry(Cable("1+6 (Cardinal core and layer 1)", c.layers[:2]), 0.2)
+        p_max, p_step = p_max or 600.0, 100.0
+    else:
+        geometry = build_geometry(cardinal(), 1.0)
+        p_max, p_step = p_max or 4300.0, 250.0
+    res = [run(geometry, m, 40e3, p_max, p_step) for m in ("small", "large")]
+    small, large = res
+    print(f"{geometry.cable.name}, L = {geometry.length} m, T = 40 kN, saddle 0 → {p_max:.0f} N")
+    print(f"{'model':6s} {'steps':>5s} {'cuts':>4s} {'Newton its':>10s} {'time s':>7s} "
+          f"{'s/it':>5s} {'nnz':>9s} {'δ mm':>7s}")  # fmt: skip
+    for r in res:
+        print(
+            f"{r['model']:6s} {r['steps']:5d} {r['cuts']:4d} {r['iterations']:10d} "
+            f"{r['seconds']:7.1f} {r['seconds'] / r['iterations']:5.2f} {r['nnz']:9.3g} "
+            f"{1e3 * r['deflection']:7.3f}"
+        )
+    a, b = small["cells"], large["cells"]
+    print(
+        f"{'layer':>5s} {'range N':>9s} {'max |ΔN| / range':>17s}   per 45° sector (max |ΔN|/range)"
+    )
+    for layer in range(len(geometry.cable.layers)):
+        m = a.layer == layer
+        span = np.ptp(a.axial[m])
+        diff = np.abs(b.axial[m] - a.axial[m]) / span
+        sec = sector_of(a.phi[m])
+        per = " ".join(f"{diff[sec == s].max(initial=0):.3f}" for s in range(8))
+        print(f"{layer:5d} {span:9.1f} {diff.max():17.3f}   {per if layer else '-'}")
+    print(
+        f"deflection difference {100 * (large['deflection'] / small['deflection'] - 1):+.2f} %; "
+        f"speed ratio (large / small wall time): {large['seconds'] / small['seconds']:.2f}"
+    )
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    n_layers = len(geometry.cable.layers)
+    fig, axes = plt.subplots(n_layers, 1, figsize=(9, 2.2 * n_layers), sharex=True)
+    for layer, ax in enumerate(np.atleast_1d(axes)):
+        m = a.layer == layer
+        ax.scatter(1e3 * a.z[m], a.axial[m], s=2, label="small sliding")
+        ax.scatter(1e3 * b.z[m], b.axial[m], s=2, marker="x", label="large sliding")
+        ax.set_ylabel(f"{'core' if layer == 0 else f'layer {layer}'}\nN (N)")
+    np.atleast_1d(axes)[0].legend(markerscale=4)
+    np.atleast_1d(axes)[-1].set_xlabel("z (mm)")
+    out = Path("results") / f"sliding_comparison_{which}.png"
+    out.parent.mkdir(exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    print(f"overlay: {out}")
+
+
+if __name__ == "__main__":
+    main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:3]])

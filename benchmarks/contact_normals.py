@@ -48,7 +48,7 @@ def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
     out["its"] = sum(out["tension"]) + sum(out["lateral"])
     out["deflection"] = problem.midspan_deflection()
     out["P"] = problem.lateral
-    x = geometry.points + problem.nodal[problem.i2b[np.arange(len(geometry.points))], :3]
+    x = problem.positions()
     measured = centreline_gaps(geometry, x) - centreline_gaps(geometry, geometry.points)
     error = problem.pair_results()["gap"] - measured
     out["gap_error"] = [

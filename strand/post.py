@@ -84,7 +84,7 @@ def cell_results(problem: StrandProblem, evaluator: CellEvaluator | None = None)
     g = problem.geometry
     evaluator = evaluator or CellEvaluator(problem)
     values = evaluator()
-    x = g.points + problem.nodal[problem.i2b[np.arange(len(g.points))], :3]
+    x = problem.positions()
     mid = x[g.cells].mean(axis=1)
     core = x[g.wire_offsets[0] : g.wire_offsets[1]]
     z0 = g.points[g.cells].mean(axis=1)[:, 2]
@@ -108,7 +108,7 @@ def midspan_moment_curvature(problem: StrandProblem, cells: CellResults, fit_hal
     """
     g = problem.geometry
     L = g.length
-    x = g.points + problem.nodal[problem.i2b[np.arange(len(g.points))], :3]
+    x = problem.positions()
     z0, z1 = g.points[g.cells, 2].T
     cut = np.flatnonzero((z0 <= L / 2) & (z1 > L / 2))
     t = (L / 2 - z0[cut]) / (z1[cut] - z0[cut])

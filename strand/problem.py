@@ -26,6 +26,7 @@ from .contact.element import ContactSettings, contact_groups  # isort: skip
 from .contact.sliding import sliding_groups  # isort: skip
 from .geometry import StrandGeometry  # isort: skip
 from .mesh import CableMesh, beam_space, cable_mesh, input_to_block  # isort: skip
+from .output import cell_function  # isort: skip
 from .solver import NewtonOptions, NewtonSolver, NodalLoad  # isort: skip
 
 __all__ = ["PenaltyLinks", "saddle_weights", "layer_section", "StrandProblem"]
@@ -90,16 +91,12 @@ def saddle_weights(points: Array, direction: Array) -> tuple[npt.NDArray[np.intp
 
 def layer_section(cmesh: CableMesh) -> CircularSection:
     """Circular sections with the diameter and elastic constants of each cell's layer (DG0)."""
-    layers = cmesh.geometry.cable.layers
-    Q = fem.functionspace(cmesh.mesh, ("DG", 0))
-    values = {}
-    for name, get in (("d", lambda w: w.diameter), ("E", lambda w: w.E), ("nu", lambda w: w.nu)):
-        f = fem.Function(Q, name=name)
-        table = np.array([get(lay.wire) for lay in layers])
-        cells = cmesh.layer_tags.indices
-        f.x.array[Q.dofmap.list[cells].ravel()] = table[cmesh.layer_tags.values]
-        f.x.scatter_forward()
-        values[name] = f
+    g = cmesh.geometry
+    wires = [lay.wire for lay in g.cable.layers]
+    values = {
+        name: cell_function(cmesh.mesh, np.array([get(w) for w in wires])[g.cell_layer], name)
+        for name, get in (("d", lambda w: w.diameter), ("E", lambda w: w.E), ("nu", lambda w: w.nu))
+    }
     return CircularSection(values["d"], values["E"], values["nu"])
 
 
@@ -220,6 +217,11 @@ class StrandProblem:
     def nodal(self) -> Array:
         """(n_blocks, 6) nodal unknowns (u in m, θ in rad)."""
         return self.w.x.array.reshape(-1, 6)
+
+    def positions(self) -> Array:
+        """Current positions (m) of the geometry's points, in the geometry's order (N, 3)."""
+        g = self.geometry
+        return g.points + self.nodal[self.i2b[np.arange(len(g.points))], :3]
 
     def end_displacement(self) -> float:
         """Axial displacement of the end section (the pilot's u_z), m."""

@@ -400,7 +400,7 @@ def test_gap_consistency_on_a_bent_strand(normal):
     deflection = problem.midspan_deflection()
     print(f"deflection {deflection * 1e3:.3f} mm, steps {[r.iterations for r in stepper.history]}")
     assert deflection > 1e-4
-    x = geometry.points + problem.nodal[problem.i2b[np.arange(len(geometry.points))], :3]
+    x = problem.positions()
     measured = centreline_gaps(geometry, x) - centreline_gaps(geometry, geometry.points)
     element = problem.pair_results()["gap"]
     pairs = geometry.pairs

@@ -28,7 +28,7 @@ import numpy.typing as npt
 
 from ..geometry import LINE, StrandGeometry
 from .element import ContactState
-from .kinematics import skew
+from .kinematics import _dot, skew
 from .laws import coulomb_return, normal_force, tangential_stiffness
 
 __all__ = ["SlidingGroup", "sliding_groups", "closest_parameters", "SlidingWindowError"]
@@ -39,10 +39,6 @@ _EPS = 1e-30
 
 class SlidingWindowError(RuntimeError):
     """A contact point slid beyond the segments reserved for it."""
-
-
-def _dot(a, b):
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
 
 
 def closest_parameters(p0, p1, q0, q1):

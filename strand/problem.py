@@ -157,7 +157,6 @@ class StrandProblem:
         ends = geometry.wire_offsets[1:] - 1  # last point of each wire, at z = L
         assert np.allclose(geometry.points[ends, 2], L)
         self.pilot = int(i2b[ends[0]])
-        self.end_blocks = i2b[ends]
         self.links = PenaltyLinks(
             np.column_stack([np.full(len(ends) - 1, self.pilot), i2b[ends[1:]]]), link_stiffness
         )
@@ -241,5 +240,5 @@ class StrandProblem:
             out["gap"][g.index] = s.gap
             out["force"][g.index] = s.force
             out["traction"][g.index] = np.linalg.norm(s.traction, axis=1)
-            out["slipping"][g.index] = s.slipping & (s.force > 0)
+            out["slipping"][g.index] = s.slipping
         return out

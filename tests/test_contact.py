@@ -436,8 +436,10 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(normal="radial")
     with pytest.raises(CableError, match="k_point = -1"):
         ContactSettings(k_point=-1)
-    with pytest.raises(CableError, match="unknown contact setting"):
-        ContactSettings.from_dict({"kn": 1})
+    from strand.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
+
+    with pytest.raises(CaseError, match=r"unknown setting\(s\) in \[contact\]: \['kn'\]"):
+        case_from_dict({"contact": {"kn": 1}})
 
 
 @pytest.mark.parametrize("angle", [0.0, 1e-6, 0.01, 0.1, 0.2999, 0.3001, 1.0, 3.0])

@@ -16,7 +16,7 @@ steps only. Units: m, N, rad.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
@@ -26,7 +26,14 @@ from ..geometry import LINE, POINT, StrandGeometry
 from .kinematics import NORMALS, gap_derivatives, skew, stencil_nodes
 from .laws import coulomb_return, normal_force, tangential_stiffness
 
-__all__ = ["ContactSettings", "ContactGroup", "ContactState", "contact_groups"]
+__all__ = [
+    "ContactSettings",
+    "ContactGroup",
+    "ContactState",
+    "contact_groups",
+    "friction_terms",
+    "tangential_part",
+]
 
 Array = npt.NDArray[np.float64]
 
@@ -78,17 +85,6 @@ class ContactSettings:
             if not (isinstance(value, int | float) and value > 0):
                 raise CableError(f"contact {name} = {value!r}: must be a positive number")
 
-    @classmethod
-    def from_dict(cls, data: dict) -> ContactSettings:
-        known = {f.name for f in fields(cls)}
-        unknown = set(data) - known
-        if unknown:
-            raise CableError(
-                f"unknown contact setting(s) {', '.join(sorted(unknown))}; "
-                f"known: {', '.join(sorted(known))}"
-            )
-        return cls(**data)
-
 
 @dataclass
 class ContactState:
@@ -100,6 +96,30 @@ class ContactState:
     traction: Array
     normal: Array
     slipping: npt.NDArray[np.bool_]
+
+
+def friction_terms(S, dq, p, dp_dq, mu, p_old, t_old, n_old, g_lim, jacobian: bool):
+    """Coulomb friction of all pairs on a slip operator S (P, 3, m): Δg_T = S Δq.
+
+    Returns the residual Sᵀt (P, m), the tangent Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗∂p/∂q (P, m, M) over
+    all M dofs of the pair's layout (``dp_dq`` (P, M); None without ``jacobian``), the traction and
+    the slipping flags (pairs at the cap with a positive normal force).
+    """
+    slip = np.einsum("pij,pj->pi", S, dq)
+    k_t = tangential_stiffness(mu, p_old, g_lim)
+    ret = coulomb_return(t_old, slip, n_old, p, mu, k_t)
+    f = np.einsum("pij,pi->pj", S, ret.traction)
+    K = None
+    if jacobian:
+        St = S.transpose(0, 2, 1)
+        K = np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq)
+        K[:, :, : S.shape[2]] += St @ ret.d_slip @ S
+    return f, K, ret.traction, ret.slipping & (p > 0)
+
+
+def tangential_part(t, n):
+    """The traction t (P, 3) projected on the plane normal to n: the history carried to a step."""
+    return t - np.einsum("pi,pi->p", t, n)[:, None] * n
 
 
 class ContactGroup:
@@ -225,20 +245,14 @@ class ContactGroup:
         traction = np.zeros((len(p), 3))
         slipping = np.zeros(len(p), dtype=bool)
         if self.friction:
-            S = self.slip_operator()
             dq = W[:, :2].reshape(-1, 12) - self._q_old
-            slip = np.einsum("pij,pj->pi", S, dq)
-            k_t = tangential_stiffness(self.mu, self._p_old, self.g_lim)
-            ret = coulomb_return(self._t_old, slip, self._n_old, p, self.mu, k_t)
-            traction, slipping = ret.traction, ret.slipping
-            f[:, :12] += np.einsum("pij,pi->pj", S, traction)
+            f_t, K_t, traction, slipping = friction_terms(
+                self.slip_operator(), dq, p, dp_dg[:, None] * G, self.mu, self._p_old,
+                self._t_old, self._n_old, self.g_lim, jacobian,
+            )  # fmt: skip
+            f[:, :12] += f_t
             if jacobian:
-                St = S.transpose(0, 2, 1)
-                K[:, :12, :12] += St @ ret.d_slip @ S
-                dp_dq = dp_dg[:, None] * G
-                K[:, :12, :] += np.einsum(
-                    "pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq
-                )
+                K[:, :12, :] += K_t
         self.state = ContactState(gd.gap, p, traction, gd.normal, slipping)
         self._last = W[:, :2].reshape(-1, 12).copy()
         return f, K
@@ -249,7 +263,7 @@ class ContactGroup:
             return
         n = self.state.normal
         t = self.state.traction
-        self._t_old = t - np.einsum("pi,pi->p", t, n)[:, None] * n  # onto the new tangent plane
+        self._t_old = tangential_part(t, n)  # onto the new tangent plane
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
         self._q_old = self._last.copy()

@@ -210,18 +210,26 @@ def _difference_map(rows: list[tuple[int, int]], n_blocks: int) -> npt.NDArray[n
 
 _Kernel = Callable[[np.ndarray, dict], tuple[np.ndarray, np.ndarray, np.ndarray]]
 
-#: (normal, line pair?) -> (kernel on z, the map A from y to z)
-_KERNELS: dict[tuple[str, bool], tuple[_Kernel, npt.NDArray[np.float64]]] = {
+
+def _entry(kernel: _Kernel, A: npt.NDArray[np.float64]):
+    """(kernel, A, zmap, zsign): every unknown y_i enters one z_j = zmap[i] with the sign
+    zsign[i] (A has one ±1 per column, or none: sign 0), so A-products become gathers."""
+    assert np.all((A != 0).sum(axis=0) <= 1)
+    return kernel, A, np.abs(A).argmax(axis=0), A.max(axis=0) + A.min(axis=0)
+
+
+#: (normal, line pair?) -> (kernel on z, the map A from y to z, and its gather form)
+_KERNELS: dict[tuple[str, bool], tuple] = {
     # y = (x_a, x_b)
-    ("frozen", False): (_frozen, _difference_map([(1, 0)], 2)),
-    ("frozen", True): (_frozen, _difference_map([(1, 0)], 2)),
+    ("frozen", False): _entry(_frozen, _difference_map([(1, 0)], 2)),
+    ("frozen", True): _entry(_frozen, _difference_map([(1, 0)], 2)),
     # y = (x_a, x_b, x_a−, x_a+, x_b−, x_b+): z = (d, c_a, c_b)
-    ("neighbour", False): (_neighbour_point, _difference_map([(1, 0), (3, 2), (5, 4)], 6)),
+    ("neighbour", False): _entry(_neighbour_point, _difference_map([(1, 0), (3, 2), (5, 4)], 6)),
     # y = (x_a, x_b, x_a−, x_a+): z = (d, c)
-    ("neighbour", True): (_neighbour_line, _difference_map([(1, 0), (3, 2)], 4)),
+    ("neighbour", True): _entry(_neighbour_line, _difference_map([(1, 0), (3, 2)], 4)),
     # y = (x_a, θ_a, x_b, θ_b): z = (d, θ_a, θ_b) or (d, θ_a)
-    ("director", False): (_director_point, _difference_map([(2, 0), (1, -1), (3, -1)], 4)),
-    ("director", True): (_director_line, _difference_map([(2, 0), (1, -1)], 4)),
+    ("director", False): _entry(_director_point, _difference_map([(2, 0), (1, -1), (3, -1)], 4)),
+    ("director", True): _entry(_director_line, _difference_map([(2, 0), (1, -1)], 4)),
 }
 
 
@@ -305,7 +313,7 @@ def gap_derivatives(
         hessian_where: selects, from the gaps, the pairs whose Hessian is needed (the closed
             ones: it enters the tangent multiplied by the normal force); None computes none.
     """
-    kernel, A = _KERNELS[(normal, line)]
+    kernel, A, zmap, zsign = _KERNELS[(normal, line)]
     n_pairs, k, _ = positions.shape
     if normal == "director":
         y = np.concatenate(
@@ -315,8 +323,6 @@ def gap_derivatives(
         y = positions.reshape(n_pairs, 3 * k)
     z = y @ A.T
     value, grad_z, n = kernel(z, data)
-    # every unknown y_i enters one z_j with a sign (A has one ±1 per column, or none): gathers
-    zmap, zsign = np.abs(A).argmax(axis=0), A.max(axis=0) + A.min(axis=0)
     idx = _unknown_dofs(normal, k)
     gradient = np.zeros((n_pairs, 6 * k))
     gradient[:, idx] = grad_z[:, zmap] * zsign

@@ -27,9 +27,9 @@ import numpy as np
 import numpy.typing as npt
 
 from ..geometry import LINE, StrandGeometry
-from .element import ContactState
+from .element import ContactState, friction_terms, tangential_part
 from .kinematics import _dot, skew
-from .laws import coulomb_return, normal_force, tangential_stiffness
+from .laws import normal_force
 
 __all__ = ["SlidingGroup", "sliding_groups", "closest_parameters", "SlidingWindowError"]
 
@@ -131,11 +131,11 @@ class SlidingGroup:
         self.wire_end = (
             np.zeros((n_pairs, 4), dtype=bool) if wire_end is None else np.asarray(wire_end)
         )
-        self.g0 = np.zeros(n_pairs)
-        self.g0 = self._kinematics(self.X, hessian=False)[0]
+        self.g0 = np.zeros(n_pairs)  # so that the initial distances come out whole
+        self.g0, _, n_initial, _ = self._kinematics(self.X, hessian=False)
         self._t_old = np.zeros((n_pairs, 3))
         self._p_old = np.zeros(n_pairs)
-        self._n_old = self._last_n.copy()
+        self._n_old = n_initial.copy()
         self._w_old = np.zeros((n_pairs, k, 6))  # window unknowns at the last converged step
         self._committed_segment = self.segment.copy()
         self.state = ContactState(
@@ -207,7 +207,6 @@ class SlidingGroup:
         fixed = np.column_stack([np.clip(xi, 0, 1), np.clip(eta, 0, 1)])
         self._outside = out
         dist, grad, n, xi, eta = kernel(y, free, fixed)
-        self._last_n = n
         self._shape = np.column_stack(
             [1 - xi, xi] + ([np.ones_like(xi)] if self.line else [1 - eta, eta])
         )
@@ -262,17 +261,14 @@ class SlidingGroup:
                 S[rows[:, 0], :, node, 0:3] = (side[j] * weight)[:, None, None] * P_n
                 S[rows[:, 0], :, node, 3:6] = (weight * radius[:, j])[:, None, None] * lever
             S = S.reshape(n_pairs, 3, 6 * k)
-            slip = np.einsum("pij,pj->pi", S, (W - self._w_old).reshape(n_pairs, -1))
-            k_t = tangential_stiffness(self.mu, self._p_old, self.g_lim)
-            ret = coulomb_return(self._t_old, slip, n0, p, self.mu, k_t)
-            traction, slipping = ret.traction, ret.slipping
-            f += np.einsum("pij,pi->pj", S, traction)
+            f_t, K_t, traction, slipping = friction_terms(
+                S, (W - self._w_old).reshape(n_pairs, -1), p, dp_dg[:, None] * G, self.mu,
+                self._p_old, self._t_old, n0, self.g_lim, jacobian,
+            )  # fmt: skip
+            f += f_t
             if jacobian:
-                St = S.transpose(0, 2, 1)
-                K += St @ ret.d_slip @ S
-                K += np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure),
-                               dp_dg[:, None] * G)  # fmt: skip
-        self.state = ContactState(g, p, traction, n, slipping & (p > 0))
+                K += K_t
+        self.state = ContactState(g, p, traction, n, slipping)
         self._last_w = W
         return f, K
 
@@ -283,9 +279,8 @@ class SlidingGroup:
                 f"contact pairs {bad.tolist()} slid to the end of the segments reserved for them; "
                 "increase the sliding reach"
             )
-        n = self._last_n
-        t = self.state.traction
-        self._t_old = t - _dot(t, n)[:, None] * n
+        n = self.state.normal
+        self._t_old = tangential_part(self.state.traction, n)
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
         self._w_old = self._last_w.copy()

@@ -33,7 +33,7 @@ paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +
     tolerance = 1e-2          # N, absolute residual tolerance (2.5e-7 of the tension)
 
     [output]
-    folder = "results/cardinal"
+    folder = "results/cardinal"    # default for a case file: results/<file name without .toml>
     fields = true             # XDMF time series for ParaView
     plots = true              # PNG figures at the end
 
@@ -96,7 +96,7 @@ class StepSettings:
 
 @dataclass(frozen=True)
 class OutputSettings:
-    folder: str = ""  # default: results/<case file stem> or results/cardinal
+    folder: str = "results/cardinal"
     fields: bool = True
     plots: bool = True
 
@@ -223,4 +223,7 @@ def load_case(path: str | Path | None = None) -> Case:
         raise CaseError(f"{path}: not valid TOML ({e})") from None
     if "core" in data and "layer" in data:  # a bare cable description is a case too
         data = {"cable": data}
+    output = data.get("output", {})
+    if isinstance(output, dict) and "folder" not in output:  # results/<case name> by default
+        data = {**data, "output": {**output, "folder": f"results/{path.stem}"}}
     return case_from_dict(data, path.parent, str(path))

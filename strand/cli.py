@@ -79,12 +79,9 @@ def _run(args) -> int:
     from .case import load_case
 
     case = load_case(args.case)  # every setting is checked here, before any computing
-    out = args.out or case.output.folder
-    if not out:
-        out = f"results/{Path(args.case).stem}" if args.case else "results/cardinal"
     from .run import run_case
 
-    result = run_case(case, out)
+    result = run_case(case, args.out)
     return 3 if result.failure else 0
 
 

@@ -145,8 +145,9 @@ def results_figures(case, result, problem) -> list[Path]:
     L = case.mesh.length
     cmap = plt.get_cmap("twilight", 8)
 
-    def save_fig(fig, name):
-        fig.tight_layout()
+    def save_fig(fig, name, tight=True):
+        if tight:  # not with a colour bar shared by several axes
+            fig.tight_layout()
         fig.savefig(folder / name, dpi=110)
         plt.close(fig)
         paths.append(folder / name)
@@ -168,9 +169,7 @@ def results_figures(case, result, problem) -> list[Path]:
         fig.suptitle(
             f"wire axial forces at P = {P_peak / 1e3:.2f} kN, T = {case.load.tension / 1e3:g} kN"
         )
-        fig.savefig(folder / "axial_force_sectors.png", dpi=110)
-        plt.close(fig)
-        paths.append(folder / "axial_force_sectors.png")
+        save_fig(fig, "axial_force_sectors.png", tight=False)
 
     if peak is not None and base is not None:
         fig, axes = plt.subplots(1, n_layers - 1, figsize=(3.2 * (n_layers - 1), 3.4), sharey=True)

@@ -64,19 +64,18 @@ class RunResult:
 class _Progress:
     """One line per converged step: a bar over the whole load path, load, iterations, time."""
 
-    def __init__(self, total_path: float, stream):
-        self.total = total_path
-        self.done = 0.0
+    def __init__(self, stream):
+        self.done = 0.0  # fraction of the load path
         self.stream = stream
         self.t0 = time.perf_counter()
 
-    def step(self, stage: str, load: float, unit: float, label: str, its: int, cuts: int, extra=""):
+    def step(self, stage: str, load: str, its: int, cuts: int, extra=""):
         width = 24
-        filled = int(round(width * min(self.done / self.total, 1.0)))
+        filled = int(round(width * min(self.done, 1.0)))
         bar = "#" * filled + "." * (width - filled)
         cut = f", {cuts} cut{'s' * (cuts > 1)}" if cuts else ""
         print(
-            f"[{bar}] {stage:8s} {load / unit:8.2f} {label}  {its:2d} Newton its{cut}"
+            f"[{bar}] {stage:8s} {load}  {its:2d} Newton its{cut}"
             f"  {extra}  {time.perf_counter() - self.t0:6.1f} s",
             file=self.stream,
             flush=True,
@@ -94,7 +93,7 @@ def _settings_text(case: Case) -> str:
 
 def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) -> RunResult:
     """Run ``case``; outputs go to ``folder`` (default: the case's output folder)."""
-    folder = Path(folder or case.output.folder or "results/cardinal")
+    folder = Path(folder or case.output.folder)
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "settings.txt").write_text(_settings_text(case))
     result = RunResult(folder)
@@ -149,7 +148,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
     # progress: tension counts for 10 % of the path (a few steps), the lateral cycle for the rest
     lateral_path = np.abs(np.diff([0.0, *case.load.cycle])).sum() * abs(case.load.lateral)
     tension_weight = 0.1 if lateral_path > 0 else 1.0
-    progress = _Progress(1.0, stream)
+    progress = _Progress(stream)
     elements = np.arange(n_cells)
     peak_load = 0.0
 
@@ -191,16 +190,17 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         output_seconds += time.perf_counter() - t_out
         # progress
         if rec.stage == "tension":
+            result.tensioned = cells  # the last tension step is the tensioned state
             progress.done = tension_weight * abs(problem.tension / case.load.tension)
-            load, unit, label = problem.tension, 1e3, "kN tension"
+            load = f"{problem.tension / 1e3:8.2f} kN tension"
+            extra = " " * 14
         else:
-            progress.done += (1 - tension_weight) * abs(rec.load - previous[0]) / lateral_path
-            load, unit, label = problem.lateral, 1e3, "kN lateral"
-        previous[0] = rec.load
-        extra = f"δ = {1e3 * row['deflection']:7.2f} mm" if rec.stage != "tension" else " " * 14
-        progress.step(rec.stage, load, unit, label, rec.iterations, rec.cuts, extra)
+            before = result.steps[-2]["lateral"] if len(result.steps) > 1 else 0.0
+            progress.done += (1 - tension_weight) * abs(problem.lateral - before) / lateral_path
+            load = f"{problem.lateral / 1e3:8.2f} kN lateral"
+            extra = f"δ = {1e3 * row['deflection']:7.2f} mm"
+        progress.step(rec.stage, load, rec.iterations, rec.cuts, extra)
 
-    previous = [0.0]
     output_seconds = 0.0
     steps = case.steps
     try:
@@ -209,13 +209,11 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
             growth=steps.growth, on_step=on_step,
         )  # fmt: skip
         tension.ramp(problem.set_tension, 0.0, case.load.tension, "tension")
-        result.tensioned = cell_results(problem, evaluator)
         lateral = LoadStepper(
             problem.solver, steps.lateral, steps.lateral / 2**steps.cuts,
             max_step=steps.lateral_max, growth=steps.growth, on_step=on_step, extrapolate=True,
         )  # fmt: skip
         current = 0.0
-        previous[0] = 0.0
         for i, target in enumerate(case.load.cycle):
             P = target * case.load.lateral
             lateral.step = steps.lateral  # every leg starts small: the direction reverses

@@ -52,6 +52,15 @@ def test_default_case_is_the_seed_papers_test():
     assert case.load.tension == 40e3 and case.load.lateral == 4.3e3
     assert case.load.cycle == (1.0, 0.0, -1.0, 0.0) and case.load.saddle_length == 0.02
     assert case.contact.normal == "director" and case.contact.friction
+    assert case.output.folder == "results/cardinal"
+
+
+def test_a_case_file_writes_to_results_named_after_it(tmp_path):
+    path = tmp_path / "short_span.toml"
+    path.write_text("[mesh]\nlength = 0.3\n")
+    assert load_case(path).output.folder == "results/short_span"
+    path.write_text('[output]\nfolder = "elsewhere"\n')
+    assert load_case(path).output.folder == "elsewhere"
 
 
 @pytest.mark.parametrize(

@@ -15,6 +15,8 @@ paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +
     k_line = 5e9              # N/m², core | layer-1 penalty per metre of wire
     g_lim = 5e-6              # m, elastic slip at which friction reaches μP
     friction = true           # Coulomb coefficients of the cable; false: frictionless
+    model = "small"           # small sliding (pairs fixed at t = 0) | large (re-projected: the baseline)
+    reach = 1e-3              # m, large sliding: sliding room reserved either side of each pair
 
     [load]
     tension = 40e3            # N, end force, held during bending

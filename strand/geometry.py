@@ -84,6 +84,17 @@ class StrandGeometry:
         """Initial centreline points (m) of wires ``wires`` at heights ``z`` (broadcast)."""
         return _centres(self.cable, self.wire_phase, self.wire_layer, wires, z)
 
+    def tangents(self) -> npt.NDArray[np.float64]:
+        """Initial unit tangents of the centrelines at every point (N, 3), towards +z (analytic)."""
+        lay = self.wire_layer[self.point_wire]
+        radius = np.array([layer.radius for layer in self.cable.layers])[lay]
+        rate = np.array([layer.angular_rate for layer in self.cable.layers])[lay]
+        phi = self.wire_phase[self.point_wire] + rate * self.points[:, 2]
+        t = np.column_stack(
+            [-radius * rate * np.sin(phi), radius * rate * np.cos(phi), np.ones(len(phi))]
+        )
+        return t / np.linalg.norm(t, axis=1)[:, None]
+
     def cell_lengths(self) -> npt.NDArray[np.float64]:
         return np.linalg.norm(np.diff(self.points[self.cells], axis=1)[:, 0], axis=1)
 

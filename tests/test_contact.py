@@ -436,6 +436,10 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(normal="radial")
     with pytest.raises(CableError, match="k_point = -1"):
         ContactSettings(k_point=-1)
+    with pytest.raises(CableError, match="model 'huge' is unknown"):
+        ContactSettings(model="huge")
+    with pytest.raises(CableError, match="reach = 0"):
+        ContactSettings(model="large", reach=0)
     from strand.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
 
     with pytest.raises(CaseError, match=r"unknown setting\(s\) in \[contact\]: \['kn'\]"):

@@ -58,7 +58,8 @@ class ContactSettings:
         friction: use the Coulomb coefficients of the cable (False: frictionless).
         model: "small" sliding (pairs fixed at t = 0, this module) or "large" sliding (pairs
             re-projected at every iteration, ``strand.contact.sliding``: the baseline).
-        reach: large sliding only: segments reserved either side of each initial pair.
+        reach: large sliding only: sliding distance reserved either side of each initial pair,
+            m (its window holds every segment of the two wires within reach).
     """
 
     normal: str = "auto"
@@ -67,7 +68,7 @@ class ContactSettings:
     g_lim: float = 5e-6
     friction: bool = True
     model: str = "small"
-    reach: int = 1
+    reach: float = 1e-3
 
     def __post_init__(self):
         if self.normal == "auto":
@@ -78,9 +79,7 @@ class ContactSettings:
             )
         if self.model not in ("small", "large"):
             raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
-        if not (isinstance(self.reach, int) and self.reach >= 1):
-            raise CableError(f"contact reach = {self.reach!r}: must be a whole number ≥ 1")
-        for name in ("k_point", "k_line", "g_lim"):
+        for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):
                 raise CableError(f"contact {name} = {value!r}: must be a positive number")

@@ -1,11 +1,14 @@
 """Small vs large sliding on the same mesh, laws and solver: forces, deflections, cost.
 
-Run: .venv/bin/python benchmarks/sliding_comparison.py [helix|cardinal] [P_max_N]
-(a) helix: a 1+6 strand (Cardinal's core and first layer), 0.2 m, 40 kN, saddle to 600 N;
+Run: .venv/bin/python benchmarks/sliding_comparison.py [helix|cardinal] [P_max_N] [length_m]
+(a) helix: a 1+6 strand (Cardinal's core and first layer: six helices wound on a straight core),
+    0.2 m, 40 kN, saddle to 600 N;
 (b) cardinal: the full conductor, 1 m, 40 kN, saddle to 4.3 kN (one loading leg).
-Prints, for each model, the Newton iterations and wall time measured in this run, the midspan
-deflection, and per layer the largest difference of the wire axial forces at the largest load
-relative to that layer's force range (and per 45° sector); writes an overlay plot.
+Prints, for each model, the steps, Newton iterations and wall time measured in this run, the
+matrix size and MUMPS factor memory, the midspan deflection, and per layer (and per 45° sector)
+the largest difference of the wire axial forces at the largest load relative to that layer's
+force range. Writes results/sliding_comparison_<case>.png: the axial forces of both models along
+z per layer, and their difference coloured by sector.
 """
 
 import strand  # noqa: F401
@@ -40,37 +43,82 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
     lateral.ramp(problem.set_lateral, 0.0, p_max, "lateral")
     seconds = time.perf_counter() - t0
     history = steps.history + lateral.history
+    factor = problem.solver.snes.getKSP().getPC().getFactorMatrix()
+    timings = problem.solver.timings
     return {
         "model": model,
         "seconds": seconds,
         "setup": setup,
+        "contact": timings["terms"],
         "iterations": sum(r.iterations for r in history),
         "steps": len(history),
         "cuts": sum(r.cuts for r in history),
         "deflection": problem.midspan_deflection(),
         "cells": cell_results(problem),
         "nnz": problem.solver.A.getInfo()["nz_used"],
+        "mumps_mb": factor.getMumpsInfog(22),  # MB used by the factorisation (all processes)
     }
 
 
-def main(which: str = "helix", p_max: float | None = None) -> None:
+def overlay(geometry, small, large, out: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    a, b = small["cells"], large["cells"]
+    n_layers = len(geometry.cable.layers)
+    fig, axes = plt.subplots(
+        n_layers, 2, figsize=(13, 2.2 * n_layers), sharex=True, squeeze=False,
+        gridspec_kw={"width_ratios": [3, 2]},
+    )  # fmt: skip
+    colours = plt.get_cmap("tab10")
+    for layer in range(n_layers):
+        m = a.layer == layer
+        ax, dx = axes[layer]
+        ax.scatter(1e3 * a.z[m], a.axial[m], s=2, label="small sliding")
+        ax.scatter(1e3 * b.z[m], b.axial[m], s=2, marker="x", label="large sliding")
+        ax.set_ylabel(f"{'core' if layer == 0 else f'layer {layer}'}\nN (N)")
+        sector = sector_of(a.phi[m]) if layer else np.zeros(m.sum(), dtype=int)
+        for s in np.unique(sector):
+            k = sector == s
+            dx.scatter(1e3 * a.z[m][k], (b.axial - a.axial)[m][k], s=2, color=colours(s),
+                       label=f"{45 * s}–{45 * (s + 1)}°")  # fmt: skip
+        dx.set_ylabel("ΔN large − small (N)")
+    axes[0, 0].legend(markerscale=4)
+    axes[1, 1].legend(markerscale=4, fontsize=7, ncol=2, title="sector of φ", title_fontsize=7)
+    axes[-1, 0].set_xlabel("z (mm)")
+    axes[-1, 1].set_xlabel("z (mm)")
+    fig.suptitle(
+        f"{geometry.cable.name}, L = {geometry.length} m: wire axial forces at the largest load"
+    )
+    out.parent.mkdir(exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def main(which: str = "helix", p_max: float | None = None, length: float | None = None) -> None:
     if which == "helix":
         c = cardinal()
-        geometry = build_geometry(Cable("1+6 (Cardinal core and layer 1)", c.layers[:2]), 0.2)
+        geometry = build_geometry(
+            Cable("1+6 (Cardinal core and layer 1)", c.layers[:2]), length or 0.2
+        )
         p_max, p_step = p_max or 600.0, 100.0
-    else:
-        geometry = build_geometry(cardinal(), 1.0)
+    elif which == "cardinal":
+        geometry = build_geometry(cardinal(), length or 1.0)
         p_max, p_step = p_max or 4300.0, 250.0
+    else:
+        raise SystemExit(f"unknown case {which!r}: helix or cardinal")
     res = [run(geometry, m, 40e3, p_max, p_step) for m in ("small", "large")]
     small, large = res
     print(f"{geometry.cable.name}, L = {geometry.length} m, T = 40 kN, saddle 0 → {p_max:.0f} N")
     print(f"{'model':6s} {'steps':>5s} {'cuts':>4s} {'Newton its':>10s} {'time s':>7s} "
-          f"{'s/it':>5s} {'nnz':>9s} {'δ mm':>7s}")  # fmt: skip
+          f"{'s/it':>5s} {'contact s':>9s} {'nnz':>9s} {'MUMPS MB':>8s} {'δ mm':>7s}")  # fmt: skip
     for r in res:
         print(
             f"{r['model']:6s} {r['steps']:5d} {r['cuts']:4d} {r['iterations']:10d} "
-            f"{r['seconds']:7.1f} {r['seconds'] / r['iterations']:5.2f} {r['nnz']:9.3g} "
-            f"{1e3 * r['deflection']:7.3f}"
+            f"{r['seconds']:7.1f} {r['seconds'] / r['iterations']:5.2f} {r['contact']:9.1f} "
+            f"{r['nnz']:9.3g} {r['mumps_mb']:8d} {1e3 * r['deflection']:7.3f}"
         )
     a, b = small["cells"], large["cells"]
     print(
@@ -87,26 +135,10 @@ def main(which: str = "helix", p_max: float | None = None) -> None:
         f"deflection difference {100 * (large['deflection'] / small['deflection'] - 1):+.2f} %; "
         f"speed ratio (large / small wall time): {large['seconds'] / small['seconds']:.2f}"
     )
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    n_layers = len(geometry.cable.layers)
-    fig, axes = plt.subplots(n_layers, 1, figsize=(9, 2.2 * n_layers), sharex=True)
-    for layer, ax in enumerate(np.atleast_1d(axes)):
-        m = a.layer == layer
-        ax.scatter(1e3 * a.z[m], a.axial[m], s=2, label="small sliding")
-        ax.scatter(1e3 * b.z[m], b.axial[m], s=2, marker="x", label="large sliding")
-        ax.set_ylabel(f"{'core' if layer == 0 else f'layer {layer}'}\nN (N)")
-    np.atleast_1d(axes)[0].legend(markerscale=4)
-    np.atleast_1d(axes)[-1].set_xlabel("z (mm)")
     out = Path("results") / f"sliding_comparison_{which}.png"
-    out.parent.mkdir(exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    overlay(geometry, small, large, out)
     print(f"overlay: {out}")
 
 
 if __name__ == "__main__":
-    main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:3]])
+    main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:4]])

@@ -64,8 +64,18 @@ def _hermite(xi):
 
 def hermite_point(control, xi, derivatives: int = 0):
     """Point (and derivatives) of the Hermite segment with control (…, 4, 3) = (x₀, L t₀, x₁, L t₁)."""
-    out = [(b[..., :, None] * control).sum(-2) for b in _hermite(xi)[: derivatives + 1]]
+    out = [_combine(b, control) for b in _hermite(xi)[: derivatives + 1]]
     return out if derivatives else out[0]
+
+
+def _combine(weights, control):
+    """Σ_k w_k c_k for weights (…, 4) and control (…, 4, 3), unrolled (a strided reduce is slow)."""
+    return (
+        weights[..., 0, None] * control[..., 0, :]
+        + weights[..., 1, None] * control[..., 1, :]
+        + weights[..., 2, None] * control[..., 2, :]
+        + weights[..., 3, None] * control[..., 3, :]
+    )
 
 
 def _controls(y, tangents, length):
@@ -133,7 +143,7 @@ def _crossing_kernel(y, data, xi, eta, free, iterations, tol=0.0):
     cb, tb, coef_b = _controls(y[..., 12:], data["tangents"][..., 2:4, :], data["length"][..., 1])
     xi, eta = _closest_on_curves(ca, cb, xi, eta, free, iterations, tol)
     ha, hb = _hermite(xi)[0], _hermite(eta)[0]
-    r = (hb[..., :, None] * cb).sum(-2) - (ha[..., :, None] * ca).sum(-2)
+    r = _combine(hb, cb) - _combine(ha, ca)
     dist = np.sqrt(_dot(r, r))
     n = r / dist[..., None]
     grad = np.concatenate(
@@ -152,7 +162,7 @@ def _line_kernel(y, data, xi, eta, free, iterations, tol=0.0):
     b = y[..., 12:15]
     xi = _closest_on_curve(ca, b, xi, free, iterations, tol)
     ha = _hermite(xi)[0]
-    r = b - (ha[..., :, None] * ca).sum(-2)
+    r = b - _combine(ha, ca)
     dist = np.sqrt(_dot(r, r))
     n = r / dist[..., None]
     grad = np.concatenate(
@@ -357,7 +367,7 @@ class SlidingGroup:
                 yc = y[sel, None, :] + 1j * _EPS * np.eye(m)
                 sub = {key: v[sel, None] for key, v in data.items()}
                 gc = self._kernel(
-                    yc, sub, xi[sel, None] + 0j, eta[sel, None] + 0j, free[sel, None], 2
+                    yc, sub, xi[sel, None] + 0j, eta[sel, None] + 0j, free[sel, None], 1
                 )[1]
                 H = (sel, np.imag(gc) / _EPS)
         return g, grad, n, H

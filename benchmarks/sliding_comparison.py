@@ -8,7 +8,8 @@ Prints, for each model, the steps, Newton iterations and wall time measured in t
 matrix size and MUMPS factor memory, the midspan deflection, and per layer (and per 45° sector)
 the largest difference of the wire axial forces at the largest load relative to that layer's
 force range. Writes results/sliding_comparison_<case>.png: the axial forces of both models along
-z per layer, and their difference coloured by sector.
+z per layer, and their difference coloured by sector. (`strand compare [case.toml]` does the same
+for the full cycle of a case, with every output of `strand run` for both models.)
 """
 
 import strand  # noqa: F401
@@ -19,12 +20,11 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
 from strand.cable import Cable, cardinal
+from strand.compare import difference_table, overlay_figure
 from strand.contact.element import ContactSettings
 from strand.geometry import build_geometry
-from strand.post import cell_results, sector_of
+from strand.post import cell_results
 from strand.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
@@ -60,43 +60,6 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
     }
 
 
-def overlay(geometry, small, large, out: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    a, b = small["cells"], large["cells"]
-    n_layers = len(geometry.cable.layers)
-    fig, axes = plt.subplots(
-        n_layers, 2, figsize=(13, 2.2 * n_layers), sharex=True, squeeze=False,
-        gridspec_kw={"width_ratios": [3, 2]},
-    )  # fmt: skip
-    colours = plt.get_cmap("tab10")
-    for layer in range(n_layers):
-        m = a.layer == layer
-        ax, dx = axes[layer]
-        ax.scatter(1e3 * a.z[m], a.axial[m], s=2, label="small sliding")
-        ax.scatter(1e3 * b.z[m], b.axial[m], s=2, marker="x", label="large sliding")
-        ax.set_ylabel(f"{'core' if layer == 0 else f'layer {layer}'}\nN (N)")
-        sector = sector_of(a.phi[m]) if layer else np.zeros(m.sum(), dtype=int)
-        for s in np.unique(sector):
-            k = sector == s
-            dx.scatter(1e3 * a.z[m][k], (b.axial - a.axial)[m][k], s=2, color=colours(s),
-                       label=f"{45 * s}–{45 * (s + 1)}°")  # fmt: skip
-        dx.set_ylabel("ΔN large − small (N)")
-    axes[0, 0].legend(markerscale=4)
-    axes[1, 1].legend(markerscale=4, fontsize=7, ncol=2, title="sector of φ", title_fontsize=7)
-    axes[-1, 0].set_xlabel("z (mm)")
-    axes[-1, 1].set_xlabel("z (mm)")
-    fig.suptitle(
-        f"{geometry.cable.name}, L = {geometry.length} m: wire axial forces at the largest load"
-    )
-    out.parent.mkdir(exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-
-
 def main(which: str = "helix", p_max: float | None = None, length: float | None = None) -> None:
     if which == "helix":
         c = cardinal()
@@ -120,23 +83,15 @@ def main(which: str = "helix", p_max: float | None = None, length: float | None 
             f"{r['seconds']:7.1f} {r['seconds'] / r['iterations']:5.2f} {r['contact']:9.1f} "
             f"{r['nnz']:9.3g} {r['mumps_mb']:8d} {1e3 * r['deflection']:7.3f}"
         )
-    a, b = small["cells"], large["cells"]
-    print(
-        f"{'layer':>5s} {'range N':>9s} {'max |ΔN| / range':>17s}   per 45° sector (max |ΔN|/range)"
-    )
-    for layer in range(len(geometry.cable.layers)):
-        m = a.layer == layer
-        span = np.ptp(a.axial[m])
-        diff = np.abs(b.axial[m] - a.axial[m]) / span
-        sec = sector_of(a.phi[m])
-        per = " ".join(f"{diff[sec == s].max(initial=0):.3f}" for s in range(8))
-        print(f"{layer:5d} {span:9.1f} {diff.max():17.3f}   {per if layer else '-'}")
+    n_layers = len(geometry.cable.layers)
+    print(difference_table(small["cells"], large["cells"], n_layers))
     print(
         f"deflection difference {100 * (large['deflection'] / small['deflection'] - 1):+.2f} %; "
         f"speed ratio (large / small wall time): {large['seconds'] / small['seconds']:.2f}"
     )
+    title = f"{geometry.cable.name}, L = {geometry.length:g} m: wire axial forces at {p_max:g} N"
     out = Path("results") / f"sliding_comparison_{which}.png"
-    overlay(geometry, small, large, out)
+    overlay_figure(small["cells"], large["cells"], n_layers, title, out)
     print(f"overlay: {out}")
 
 

@@ -3,6 +3,9 @@
 strand run  [case.toml]   the main job: tension, then the lateral saddle cycle (default: Cardinal,
                           the seed paper's test); writes fields, CSV tables and figures
 strand mesh [case.toml]   build the strand mesh and contact pairs, print the table, draw them
+strand compare [case.toml]
+                          run the case with small- and large-sliding contact; compare forces,
+                          deflections and cost
 """
 
 from __future__ import annotations
@@ -85,6 +88,16 @@ def _run(args) -> int:
     return 3 if result.failure else 0
 
 
+def _compare(args) -> int:
+    from .case import load_case
+
+    case = load_case(args.case)
+    from .compare import compare_case
+
+    compare_case(case, args.out)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="strand", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -112,6 +125,19 @@ def main(argv: list[str] | None = None) -> int:
     )
     mesh.add_argument("--out", default="results/mesh", help="output folder (default: %(default)s)")
     mesh.add_argument("--no-picture", action="store_true", help="skip the PNG")
+    compare = sub.add_parser(
+        "compare",
+        help="run a case with small- and large-sliding contact and compare them",
+        description="Run a case twice, with contact.model = small and large, on the same mesh, "
+        "laws and solver; print and write the cost of each, the deflections, and the largest "
+        "differences of the wire axial forces per layer and 45° sector, with an overlay figure.",
+    )
+    compare.add_argument(
+        "case", nargs="?", help="case file (TOML); default: the built-in Cardinal case"
+    )
+    compare.add_argument(
+        "--out", help="results folder (default: <case output folder>/sliding_comparison)"
+    )
     args = parser.parse_args(argv)
     from .cable import CableError
     from .case import CaseError
@@ -119,6 +145,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "mesh":
             return _mesh(args)
+        if args.command == "compare":
+            return _compare(args)
         return _run(args)
     except (CableError, CaseError) as e:
         print(f"strand: error: {e}", file=sys.stderr)

@@ -54,10 +54,11 @@ def crossed_pair(normal: str, line: bool, angle: float, n_pairs: int = 4, h: flo
     )
 
 
-def fd_tangent(group: ContactGroup, w: np.ndarray, step: float = 1e-9) -> np.ndarray:
-    """Central finite differences of the group's residual (P, m) w.r.t. all its stencil dofs."""
+def fd_tangent(group, w: np.ndarray, step: float = 1e-9) -> np.ndarray:
+    """Central finite differences of a pair group's residual (P, m) w.r.t. all its stencil dofs
+    (m: the group's ``dofs`` layout, or all 6k)."""
     P, k = group.stencils.shape
-    K = np.zeros((P, len(group.dofs), 6 * k))
+    K = np.zeros((P, len(getattr(group, "dofs", range(6 * k))), 6 * k))
     for j in range(6 * k):
         node, comp = divmod(j, 6)
         wp, wm = w.copy(), w.copy()

@@ -12,6 +12,7 @@ from strand.contact.element import ContactSettings  # isort: skip
 from strand.contact.sliding import SlidingGroup, SlidingWindowError  # isort: skip
 from strand.problem import StrandProblem  # isort: skip
 from strand.solver import LoadStepper, NewtonOptions  # isort: skip
+from test_contact import fd_tangent, nineteen_wire, seven_wire  # isort: skip
 
 H = 3e-3  # m, segment length
 R = 1.5e-3  # m, wire radius
@@ -44,14 +45,7 @@ def test_normal_tangent_is_exact_while_the_point_slides():
     w[:, :3] += rng.normal(scale=2e-7, size=(2 * na, 3))
     f, K = group.evaluate(w, True)
     assert group.state.force[0] > 0
-    step = 1e-9
-    K_fd = np.zeros_like(K)
-    for j in range(K.shape[2]):
-        node, comp = divmod(j, 6)
-        wp, wm = w.copy(), w.copy()
-        wp[node, comp] += step
-        wm[node, comp] -= step
-        K_fd[:, :, j] = (group.evaluate(wp, False)[0] - group.evaluate(wm, False)[0]) / (2 * step)
+    K_fd = fd_tangent(group, w, 1e-9)
     assert np.abs(K - K_fd).max() <= 1e-6 * np.abs(K).max()
 
 
@@ -88,8 +82,6 @@ def test_large_and_small_sliding_agree_when_sliding_is_small():
     contact forces within a few per cent (the wires slide by micrometres). Tolerance 1e-2 N as in
     strand run: large sliding chatters at ~1e-2 N when a contact point sits on a node shared by two
     segments (every crossing starts there)."""
-    from test_contact import seven_wire
-
     geometry = seven_wire(length=0.2)
     results = {}
     for model in ("small", "large"):
@@ -171,14 +163,7 @@ def test_hermite_tangent_is_exact_with_rotations(line):
     w[na:, 2] -= 3e-6
     f, K = group.evaluate(w, True)
     assert group.state.force[0] > 0 and 0.2 < group._shape[0, 1] < 0.5
-    step = 1e-8
-    K_fd = np.zeros_like(K)
-    for j in range(K.shape[2]):
-        node, comp = divmod(j, 6)
-        wp, wm = w.copy(), w.copy()
-        wp[node, comp] += step
-        wm[node, comp] -= step
-        K_fd[:, :, j] = (group.evaluate(wp, False)[0] - group.evaluate(wm, False)[0]) / (2 * step)
+    K_fd = fd_tangent(group, w, 1e-8)
     # columns of translations and of rotations (N/m and N/rad) checked each on its own scale
     for dofs in (slice(0, 3), slice(3, 6)):
         block = K.reshape(len(K), -1, n, 6)[..., dofs]
@@ -191,8 +176,6 @@ def test_large_sliding_tension_on_a_nineteen_wire_strand():
     """Helical layers touch at nodes, where polyline centrelines have kinks (the closest points
     flip between segments and Newton diverged at a few kN on Cardinal): on Hermite centrelines
     tension converges like the small-sliding element, to the same end displacement."""
-    from test_contact import nineteen_wire
-
     geometry = nineteen_wire(length=0.1)
     ends, histories = {}, {}
     for model in ("small", "large"):

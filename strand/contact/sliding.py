@@ -242,7 +242,6 @@ class SlidingGroup:
             np.zeros((n_pairs, 2)) if start_parameters is None
             else np.asarray(start_parameters, float).copy()
         )  # fmt: skip
-        self._committed = (self.segment.copy(), self.parameter.copy())
         self.g0 = np.zeros(n_pairs)  # so that the initial distances come out whole
         distance, _, n_initial, _ = self._kinematics(self.X, np.zeros_like(self.X), hessian=False)
         # pairs touching at t = 0 start closed: a femtometre below their initial distance, more

@@ -473,16 +473,16 @@ def sliding_groups(
     group."""
     pairs = geometry.pairs
     tangents = geometry.tangents()
+    a_first, a_last, a_ends = _windows(geometry, pairs.a, reach)
+    b_first, b_last, b_ends = _windows(geometry, pairs.b, reach)
+    # a line pair's node b is a point against the core: its window is the node itself
+    is_line = pairs.kind == LINE
+    b_first, b_last = np.where(is_line, pairs.b, b_first), np.where(is_line, pairs.b, b_last)
+    b_ends[is_line] = True
+    sizes = np.column_stack([a_last - a_first + 1, b_last - b_first + 1])
     groups = []
     for kind in (0, LINE):
         line = kind == LINE
-        a_first, a_last, a_ends = _windows(geometry, pairs.a, reach)
-        if line:
-            b_first, b_last = pairs.b, pairs.b
-            b_ends = np.ones((len(pairs), 2), dtype=bool)
-        else:
-            b_first, b_last, b_ends = _windows(geometry, pairs.b, reach)
-        sizes = np.column_stack([a_last - a_first + 1, b_last - b_first + 1])
         of_kind = pairs.kind == kind
         for na, nb in np.unique(sizes[of_kind], axis=0):
             sel = np.flatnonzero(of_kind & (sizes[:, 0] == na) & (sizes[:, 1] == nb))

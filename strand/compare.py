@@ -115,11 +115,8 @@ def compare_case(case: Case, folder: str | Path | None = None, stream=sys.stdout
         "model  steps  cuts  Newton its  time s  s/it  contact s  δ at peak mm  δ back at P = 0 mm",
     ]
     for model, r in results.items():
-        lateral = [s for s in r.steps if s["stage"] != "tension"]
-        peak = max(lateral, key=lambda s: abs(s["lateral"]), default=None)
-        zero = ", ".join(
-            f"{1e3 * s['deflection']:+.3f}" for s in lateral if abs(s["lateral"]) < 1e-9
-        )
+        peak = r.peak_step
+        zero = ", ".join(f"{1e3 * s['deflection']:+.3f}" for s in r.unloaded_steps)
         its = r.iterations
         lines.append(
             f"{model:6s} {len(r.steps):5d} {sum(s['cuts'] for s in r.steps):5d} {its:11d} "

@@ -86,10 +86,9 @@ class StrandGeometry:
 
     def tangents(self) -> npt.NDArray[np.float64]:
         """Initial unit tangents of the centrelines at every point (N, 3), towards +z (analytic)."""
-        lay = self.wire_layer[self.point_wire]
-        radius = np.array([layer.radius for layer in self.cable.layers])[lay]
-        rate = np.array([layer.angular_rate for layer in self.cable.layers])[lay]
-        phi = self.wire_phase[self.point_wire] + rate * self.points[:, 2]
+        radius, rate, phi = _helix(
+            self.cable, self.wire_phase, self.wire_layer, self.point_wire, self.points[:, 2]
+        )
         t = np.column_stack(
             [-radius * rate * np.sin(phi), radius * rate * np.cos(phi), np.ones(len(phi))]
         )
@@ -105,13 +104,18 @@ class StrandGeometry:
         return np.einsum("ij,ij->i", d, p.normal) - p.radius_a - p.radius_b
 
 
-def _centres(cable: Cable, phase, wire_layer, wires, z) -> npt.NDArray[np.float64]:
-    """Helix centres: (r cos φ, r sin φ, z) with φ = φ0 + ω z, for wire ids and z (broadcast)."""
-    wires, z = np.broadcast_arrays(np.asarray(wires), np.asarray(z, dtype=np.float64))
+def _helix(cable: Cable, phase, wire_layer, wires, z):
+    """Helix radius r (m), angular rate ω (rad/m) and angle φ = φ0 + ω z of wires at heights z."""
     lay = wire_layer[wires]
     radius = np.array([layer.radius for layer in cable.layers])[lay]
     rate = np.array([layer.angular_rate for layer in cable.layers])[lay]
-    phi = phase[wires] + rate * z
+    return radius, rate, phase[wires] + rate * z
+
+
+def _centres(cable: Cable, phase, wire_layer, wires, z) -> npt.NDArray[np.float64]:
+    """Helix centres: (r cos φ, r sin φ, z) with φ = φ0 + ω z, for wire ids and z (broadcast)."""
+    wires, z = np.broadcast_arrays(np.asarray(wires), np.asarray(z, dtype=np.float64))
+    radius, _, phi = _helix(cable, phase, wire_layer, wires, z)
     return np.stack([radius * np.cos(phi), radius * np.sin(phi), z], axis=-1)
 
 

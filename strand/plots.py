@@ -185,7 +185,7 @@ def results_figures(case, result, problem) -> list[Path]:
         fig.suptitle("change of axial force from the tensioned state to the largest load")
         save_fig(fig, "axial_force_change.png")
 
-    lateral = [s for s in result.steps if s["stage"] != "tension"]
+    lateral = result.lateral_steps
     if lateral:
         fig, ax = plt.subplots(figsize=(6, 4.5))
         P = [0.0] + [s["lateral"] / 1e3 for s in lateral]

@@ -60,6 +60,21 @@ class RunResult:
     def iterations(self) -> int:
         return sum(s["iterations"] for s in self.steps)
 
+    @property
+    def lateral_steps(self) -> list[dict]:
+        """The step rows of the lateral cycle (after tensioning)."""
+        return [s for s in self.steps if s["stage"] != "tension"]
+
+    @property
+    def peak_step(self) -> dict | None:
+        """The lateral step row at the largest |P| (None before any)."""
+        return max(self.lateral_steps, key=lambda s: abs(s["lateral"]), default=None)
+
+    @property
+    def unloaded_steps(self) -> list[dict]:
+        """The lateral step rows back at P = 0 (the residual deflections of the loop)."""
+        return [s for s in self.lateral_steps if abs(s["lateral"]) < 1e-9]
+
 
 class _Progress:
     """One line per converged step: a bar over the whole load path, load, iterations, time."""
@@ -266,14 +281,13 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
             lines.append(
                 f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
             )
-    lateral = [s for s in result.steps if s["stage"] != "tension"]
-    if lateral:
-        peak = max(lateral, key=lambda s: abs(s["lateral"]))
+    peak = result.peak_step
+    if peak is not None:
         lines.append(
             f"largest lateral load {peak['lateral'] / 1e3:.2f} kN: midspan deflection "
             f"{1e3 * peak['deflection']:.2f} mm, end displacement {1e3 * peak['end_displacement']:.3f} mm"
         )
-        zero = [s for s in lateral if abs(s["lateral"]) < 1e-9]
+        zero = result.unloaded_steps
         if zero:
             lines.append(
                 "back at P = 0: deflection "

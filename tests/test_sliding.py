@@ -29,9 +29,10 @@ def dragged_pair(angle_deg: float = 90.0, reach: int = 3, mu: float = 0.0):
     X = np.vstack([xa, xb])[None]
     stencil = np.arange(2 * na)[None]
     ends = np.zeros((1, 4), dtype=bool)
+    tangents = np.repeat([[1.0, 0.0, 0.0], [np.cos(t), np.sin(t), 0.0]], na, axis=0)[None]
     group = SlidingGroup(
         stencil, X, na, False, [[reach, reach]], [K_N], [mu], 5e-6, wire_end=ends,
-        radius_a=R, radius_b=R,
+        radius_a=R, radius_b=R, tangents=tangents,
     )  # fmt: skip
     return group, na
 

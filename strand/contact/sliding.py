@@ -171,15 +171,6 @@ def _line_kernel(y, data, xi, eta, free, iterations, tol=0.0):
     return dist, grad, n, xi, eta
 
 
-def _chord_tangents(points: Array) -> Array:
-    """Unit tangents of polylines (…, k, 3) from central differences (one-sided at the ends)."""
-    t = np.empty_like(points)
-    t[..., 1:-1, :] = points[..., 2:, :] - points[..., :-2, :]
-    t[..., 0, :] = points[..., 1, :] - points[..., 0, :]
-    t[..., -1, :] = points[..., -1, :] - points[..., -2, :]
-    return t / np.linalg.norm(t, axis=-1, keepdims=True)
-
-
 class SlidingGroup:
     """Large-sliding pairs of one kind; a ``PairTerms`` for ``NewtonSolver``.
 
@@ -193,8 +184,8 @@ class SlidingGroup:
             surface points), m.
         start_parameters: (P, 2) the initial contact point's parameter on those segments
             (default 0: the segments' first nodes).
-        tangents: (P, na + nb, 3) initial unit tangents at the window nodes (default: from the
-            polylines' central differences; pass the analytic ones where known).
+        tangents: (P, na + nb, 3) initial unit tangents of the centrelines at the window nodes
+            (keyword; a line pair's node b needs none: any value).
         index: the pairs' numbers (for messages); wire_end: (P, 4) the window's first/last node of
             wire a, then of wire b, is the wire's end (a point may stop there).
     """
@@ -211,7 +202,7 @@ class SlidingGroup:
 
     def __init__(self, stencils, initial_positions, na: int, line: bool, start, stiffness, mu,
                  g_lim: float, index=None, wire_end=None, radius_a=0.0, radius_b=0.0,
-                 start_parameters=None, tangents=None):  # fmt: skip
+                 start_parameters=None, *, tangents):  # fmt: skip
         self.stencils = np.ascontiguousarray(stencils, dtype=np.int32)
         n_pairs, k = self.stencils.shape
         self.X = np.asarray(initial_positions, dtype=float)
@@ -225,13 +216,6 @@ class SlidingGroup:
         self.wire_end = (
             np.zeros((n_pairs, 4), dtype=bool) if wire_end is None else np.asarray(wire_end)
         )
-        if tangents is None:
-            tangents = np.concatenate(
-                [_chord_tangents(self.X[:, :na])]
-                + ([] if line else [_chord_tangents(self.X[:, na:])])
-                + ([np.zeros((n_pairs, 1, 3))] if line else []),
-                axis=1,
-            )
         self.T0 = np.asarray(tangents, dtype=float)
         self.segment_length = np.full((n_pairs, k), np.nan)  # initial length of window segments
         self.segment_length[:, : na - 1] = np.linalg.norm(np.diff(self.X[:, :na], axis=1), axis=2)

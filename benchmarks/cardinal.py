@@ -33,12 +33,12 @@ def main(case_file: str | None = None) -> None:
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     stages = {}
     for s in result.steps:
-        stages.setdefault(s["stage"], []).append(s["iterations"])
+        stages.setdefault(s.stage, []).append(s.iterations)
     print(f"{case.cable.name}, L = {case.mesh.length} m, normal = {case.contact.normal}")
     print(f"{'stage':10s} {'steps':>5s} {'Newton its':>10s}  iterations per step")
     for stage, its_list in stages.items():
         print(f"{stage:10s} {len(its_list):5d} {sum(its_list):10d}  {its_list}")
-    cuts = sum(s["cuts"] for s in result.steps)
+    cuts = sum(s.cuts for s in result.steps)
     rows = [
         ("total wall time (s)", f"{total:.1f}"),
         ("  set-up: mesh, forms, pattern (s)", f"{result.setup_seconds:.1f}"),

@@ -35,19 +35,20 @@ def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
     tension = LoadStepper(problem.solver, 10e3, 500.0)
     lateral = LoadStepper(problem.solver, 250.0, 15.0, max_step=400.0)
     try:
-        tension.ramp(problem.set_tension, 0.0, 40e3, "tension")
-        lateral.ramp(problem.set_lateral, 0.0, p_max, "lateral")
+        tension.ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
+        lateral.ramp(problem.setup.set_lateral, 0.0, p_max, "lateral")
     except LoadStepFailure as failure:
         out["failed"] = (
-            str(failure).split(":")[0] + f" at {problem.tension:.0f} N / {problem.lateral:.0f} N"
+            str(failure).split(":")[0]
+            + f" at {problem.setup.tension:.0f} N / {problem.setup.lateral:.0f} N"
         )
     out["seconds"] = time.perf_counter() - t0
     out["tension"] = [r.iterations for r in tension.history]
     out["lateral"] = [r.iterations for r in lateral.history]
     out["cuts"] = sum(r.cuts for r in tension.history + lateral.history)
     out["its"] = sum(out["tension"]) + sum(out["lateral"])
-    out["deflection"] = problem.midspan_deflection()
-    out["P"] = problem.lateral
+    out["deflection"] = problem.setup.midspan_deflection()
+    out["P"] = problem.setup.lateral
     x = problem.positions()
     measured = centreline_gaps(geometry, x) - centreline_gaps(geometry, geometry.points)
     error = problem.pair_results()["gap"] - measured

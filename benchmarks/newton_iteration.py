@@ -28,12 +28,12 @@ def main(normal: str = "director", length: float = 1.0) -> None:
     problem = StrandProblem(geometry, ContactSettings(normal=normal), NewtonOptions(atol=1e-3))
     t_setup = time.perf_counter() - t0
     stepper = LoadStepper(problem.solver, 10e3, 100.0)
-    stepper.ramp(problem.set_tension, 0.0, 40e3, "tension")
+    stepper.ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
     solver = problem.solver
     solver.timings = dict.fromkeys(solver.timings, 0.0)
     its = 0
     for P in (250.0, 500.0):
-        problem.set_lateral(P)
+        problem.setup.set_lateral(P)
         result = solver.solve()
         assert result.converged, result.reason
         solver.commit()

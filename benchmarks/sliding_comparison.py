@@ -36,11 +36,11 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
     )
     setup = time.perf_counter() - t0
     steps = LoadStepper(problem.solver, tension / 4, tension / 256)
-    steps.ramp(problem.set_tension, 0.0, tension, "tension")
+    steps.ramp(problem.setup.set_tension, 0.0, tension, "tension")
     lateral = LoadStepper(
         problem.solver, p_step, p_step / 64, max_step=1.6 * p_step, extrapolate=True
     )
-    lateral.ramp(problem.set_lateral, 0.0, p_max, "lateral")
+    lateral.ramp(problem.setup.set_lateral, 0.0, p_max, "lateral")
     seconds = time.perf_counter() - t0
     history = steps.history + lateral.history
     factor = problem.solver.snes.getKSP().getPC().getFactorMatrix()
@@ -53,8 +53,8 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
         "iterations": sum(r.iterations for r in history),
         "steps": len(history),
         "cuts": sum(r.cuts for r in history),
-        "deflection": problem.midspan_deflection(),
-        "cells": cell_results(problem),
+        "deflection": problem.setup.midspan_deflection(),
+        "cells": cell_results(problem.model),
         "nnz": problem.solver.A.getInfo()["nz_used"],
         "mumps_mb": factor.getMumpsInfog(22),  # MB used by the factorisation (all processes)
     }

@@ -91,16 +91,16 @@ slippery = run_case(
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
 for run, label in ((result, "μ = 0.3 / 0.5 (Cardinal)"), (slippery, "μ = 0.05")):
-    lateral = [s for s in run.steps if s["stage"] != "tension"]
+    lateral = run.cycle_steps
     ax.plot(
-        [0.0] + [1e3 * s["deflection"] for s in lateral],
-        [0.0] + [s["lateral"] / 1e3 for s in lateral],
+        [0.0] + [1e3 * s.state.deflection for s in lateral],
+        [0.0] + [s.load / 1e3 for s in lateral],
         "o-",
         ms=3,
         label=label,
     )
-    residual = [1e3 * s["deflection"] for s in lateral if s["lateral"] == 0.0]
-    peak = max(1e3 * abs(s["deflection"]) for s in lateral)
+    residual = [1e3 * s.state.deflection for s in run.unloaded_steps]
+    peak = max(1e3 * abs(s.state.deflection) for s in lateral)
     print(f"{label}: peak {peak:.3f} mm, back at P = 0: {residual[0]:+.3f}, {residual[1]:+.3f} mm")
 ax.set_xlabel("midspan deflection (mm)")
 ax.set_ylabel("lateral load (kN)")
@@ -108,8 +108,8 @@ ax.legend()
 ax.grid(alpha=0.3)
 fig.savefig("results/demo_strand_bending/loops.png", dpi=110)
 
-lateral = [s for s in slippery.steps if s["stage"] != "tension"]
-assert abs(lateral[-1]["deflection"]) > 0.05 * max(abs(s["deflection"]) for s in lateral)
+lateral = slippery.cycle_steps
+assert abs(lateral[-1].state.deflection) > 0.05 * max(abs(s.state.deflection) for s in lateral)
 assert not result.failure and not slippery.failure
 
 # The pictures are in `results/demo_strand_bending/`: `loops.png` above, and for each run

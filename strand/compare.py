@@ -116,12 +116,12 @@ def compare_case(case: Case, folder: str | Path | None = None, stream=sys.stdout
     ]
     for model, r in results.items():
         peak = r.peak_step
-        zero = ", ".join(f"{1e3 * s['deflection']:+.3f}" for s in r.unloaded_steps)
+        zero = ", ".join(f"{1e3 * s.state.deflection:+.3f}" for s in r.unloaded_steps)
         its = r.iterations
         lines.append(
-            f"{model:6s} {len(r.steps):5d} {sum(s['cuts'] for s in r.steps):5d} {its:11d} "
+            f"{model:6s} {len(r.steps):5d} {sum(s.cuts for s in r.steps):5d} {its:11d} "
             f"{r.seconds:7.1f} {r.seconds / max(its, 1):5.2f} {r.timings.get('terms', 0.0):10.1f} "
-            f"{1e3 * peak['deflection'] if peak else float('nan'):13.3f}  {zero or '-'}"
+            f"{1e3 * peak.state.deflection if peak else float('nan'):13.3f}  {zero or '-'}"
         )
         if r.failure:
             lines.append(f"       FAILED: {r.failure}")

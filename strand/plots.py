@@ -153,7 +153,7 @@ def results_figures(case, result, problem) -> list[Path]:
         paths.append(folder / name)
 
     peak, base = result.peak, result.tensioned
-    P_peak = max((s["lateral"] for s in result.steps), key=abs, default=0.0)
+    P_peak = result.peak_step.load if result.peak_step is not None else 0.0
     if peak is not None:
         fig, axes = plt.subplots(n_layers, 1, figsize=(9, 2.2 * n_layers), sharex=True)
         for i, ax in enumerate(np.atleast_1d(axes)):
@@ -185,11 +185,11 @@ def results_figures(case, result, problem) -> list[Path]:
         fig.suptitle("change of axial force from the tensioned state to the largest load")
         save_fig(fig, "axial_force_change.png")
 
-    lateral = result.lateral_steps
+    lateral = result.cycle_steps
     if lateral:
         fig, ax = plt.subplots(figsize=(6, 4.5))
-        P = [0.0] + [s["lateral"] / 1e3 for s in lateral]
-        d = [0.0] + [1e3 * s["deflection"] for s in lateral]
+        P = [0.0] + [s.state.lateral / 1e3 for s in lateral]
+        d = [0.0] + [1e3 * s.state.deflection for s in lateral]
         ax.plot(d, P, "o-", ms=3)
         ax.set_xlabel("midspan deflection (mm)")
         ax.set_ylabel("lateral load P (kN)")

@@ -20,14 +20,14 @@ import ufl  # isort: skip
 from dolfinx import fem  # isort: skip
 
 from .cable import Cable  # isort: skip
-from .problem import StrandProblem  # isort: skip
+from .model import StrandModel  # isort: skip
 
 __all__ = [
     "CellEvaluator",
     "CellResults",
     "cell_results",
     "sector_of",
-    "midspan_moment_curvature",
+    "section_resultants",
     "fibre_model",
     "bending_stiffness_bounds",
 ]
@@ -53,9 +53,9 @@ class CellResults:
 class CellEvaluator:
     """Evaluates cell-wise beam quantities (DG0) and maps them to the geometry's cell order."""
 
-    def __init__(self, problem: StrandProblem):
-        mesh = problem.cmesh.mesh
-        beam = problem.beam
+    def __init__(self, model: StrandModel):
+        mesh = model.cmesh.mesh
+        beam = model.beam
         self.D = fem.functionspace(mesh, ("DG", 0, (7,)))
         self.f = fem.Function(self.D)
         n, m = beam.spatial_force(), beam.spatial_moment()
@@ -79,18 +79,21 @@ def sector_of(phi_deg: Array, sectors: int = 8) -> npt.NDArray[np.int32]:
     return (np.floor((np.asarray(phi_deg) + 180.0) / width).astype(np.int32)) % sectors
 
 
-def cell_results(problem: StrandProblem, evaluator: CellEvaluator | None = None) -> CellResults:
-    """Axial forces and section resultants of every element, with its wire, layer, z and φ."""
-    g = problem.geometry
-    evaluator = evaluator or CellEvaluator(problem)
+def cell_results(
+    model: StrandModel, direction=(1.0, 0.0, 0.0), evaluator: CellEvaluator | None = None
+) -> CellResults:
+    """Axial forces and section resultants of every element, with its wire, layer, z and φ
+    (measured from the neutral axis e_z × ``direction`` towards ``direction``)."""
+    g = model.geometry
+    evaluator = evaluator or CellEvaluator(model)
     values = evaluator()
-    x = problem.positions()
+    x = model.positions()
     mid = x[g.cells].mean(axis=1)
     core = x[g.wire_offsets[0] : g.wire_offsets[1]]
     z0 = g.points[g.cells].mean(axis=1)[:, 2]
     centre = np.column_stack([np.interp(z0, core[:, 2], core[:, i]) for i in range(3)])
     r = mid - centre
-    d = problem.direction
+    d = np.asarray(direction, float) / np.linalg.norm(direction)
     s = np.cross([0.0, 0.0, 1.0], d)
     phi = np.degrees(np.arctan2(r @ d, r @ s))
     return CellResults(
@@ -98,31 +101,19 @@ def cell_results(problem: StrandProblem, evaluator: CellEvaluator | None = None)
     )
 
 
-def midspan_moment_curvature(problem: StrandProblem, cells: CellResults, fit_half_length=0.015):
-    """Bending moment (N m) of the cross-section at z = L/2 and curvature (1/m) of the core there.
-
-    M = Σ_wires [(x_w − x_core) × n_w + m_w] · (e_z × d), from the elements that the section cuts;
-    κ = −u_d″ from a quadratic fit of the core's lateral displacement over ±``fit_half_length``.
-    Both change sign so that a positive load gives positive values. Also returns Σ N_z (N), which
-    must equal the tension.
-    """
-    g = problem.geometry
-    L = g.length
-    x = problem.positions()
+def section_resultants(model: StrandModel, cells: CellResults, z: float) -> tuple[Array, Array]:
+    """Moment (N m) and force (N) resultants of the cross-section at initial height ``z``, about
+    the core's current point in that section: M = Σ_wires [(x_w − x_core) × n_w + m_w], F = Σ n_w
+    (spatial vectors), from the elements that the section cuts (points interpolated along them)."""
+    g = model.geometry
+    x = model.positions()
     z0, z1 = g.points[g.cells, 2].T
-    cut = np.flatnonzero((z0 <= L / 2) & (z1 > L / 2))
-    t = (L / 2 - z0[cut]) / (z1[cut] - z0[cut])
+    cut = np.flatnonzero((z0 <= z) & (z1 > z))
+    t = (z - z0[cut]) / (z1[cut] - z0[cut])
     at = x[g.cells[cut, 0]] * (1 - t)[:, None] + x[g.cells[cut, 1]] * t[:, None]
     core = at[g.cell_wire[cut] == 0][0]
-    b = np.cross([0.0, 0.0, 1.0], problem.direction)
-    M_vec = (np.cross(at - core, cells.force[cut]) + cells.moment[cut]).sum(axis=0)
-    axial = cells.force[cut, 2].sum()
-    idx = np.arange(g.wire_offsets[0], g.wire_offsets[1])
-    zc = g.points[idx, 2] - L / 2
-    near = np.abs(zc) <= fit_half_length
-    u = problem.nodal[problem.i2b[idx[near]], :3] @ problem.direction
-    c2 = np.polyfit(zc[near], u, 2)[0]
-    return -float(M_vec @ b), -2.0 * c2, float(axial)
+    M = (np.cross(at - core, cells.force[cut]) + cells.moment[cut]).sum(axis=0)
+    return M, cells.force[cut].sum(axis=0)
 
 
 def fibre_model(cable: Cable, tension: float) -> dict:

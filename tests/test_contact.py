@@ -21,7 +21,8 @@ from strand.contact.kinematics import (  # isort: skip
 from strand.cable import CableError, cable_from_dict, cardinal  # isort: skip
 from strand.geometry import LINE, POINT, build_geometry  # isort: skip
 from strand.mesh import beam_space, input_to_block, polyline_mesh  # isort: skip
-from strand.problem import StrandProblem, saddle_weights  # isort: skip
+from strand.problem import StrandProblem  # isort: skip
+from strand.setups.saddle import saddle_weights  # isort: skip
 from strand.solver import LoadStepper, NewtonOptions, NewtonSolver, NodalLoad  # isort: skip
 
 R_A, R_B = 1.5e-3, 2.0e-3  # m
@@ -329,7 +330,7 @@ def test_helix_on_core_line_load():
     """Contact line load of a tensioned helix on its core: X = T sin²α / r (physics.md 3.8.1)."""
     geometry = seven_wire(lay_angle=12.0)
     problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-4))
-    problem.set_tension(20e3)
+    problem.setup.set_tension(20e3)
     assert problem.solver.solve().converged
     layer = geometry.cable.layers[1]
     alpha, r = layer.alpha, layer.radius
@@ -363,7 +364,7 @@ def test_newton_converges_quadratically_on_a_seven_wire_strand(normal):
     histories = []
     for T in (10e3, 40e3):  # the second step carries friction (K_T from the first)
         iterates.clear()
-        problem.set_tension(T)
+        problem.setup.set_tension(T)
         result = problem.solver.solve()
         histories.append(result.residuals)
         problem.solver.commit()
@@ -395,10 +396,10 @@ def test_gap_consistency_on_a_bent_strand(normal):
     geometry = nineteen_wire()
     problem = StrandProblem(geometry, ContactSettings(normal=normal), NewtonOptions(atol=1e-4))
     stepper = LoadStepper(problem.solver, 10e3, 1e3)
-    stepper.ramp(problem.set_tension, 0.0, 20e3)
+    stepper.ramp(problem.setup.set_tension, 0.0, 20e3)
     stepper.step = 250.0
-    stepper.ramp(problem.set_lateral, 0.0, 2000.0)
-    deflection = problem.midspan_deflection()
+    stepper.ramp(problem.setup.set_lateral, 0.0, 2000.0)
+    deflection = problem.setup.midspan_deflection()
     print(f"deflection {deflection * 1e3:.3f} mm, steps {[r.iterations for r in stepper.history]}")
     assert deflection > 1e-4
     x = problem.positions()

@@ -142,11 +142,11 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
     case = case_from_dict({"contact": {"k_point": 5e8, "k_line": 5e10}})
     geometry = build_geometry(case.cable, 0.2, 4e-3)
     problem = StrandProblem(geometry, case.contact, NewtonOptions(atol=1e-2))
-    LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.set_tension, 0.0, 40e3)
+    LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
     ref = fibre_model(case.cable, 40e3)
-    strain = problem.end_displacement() / geometry.length
+    strain = problem.setup.end_displacement() / geometry.length
     assert strain == pytest.approx(ref["strain"], rel=0.03)
-    cells = cell_results(problem)
+    cells = cell_results(problem.model)
     middle = np.abs(cells.z - 0.1) < 0.05
     for layer, expected in enumerate(ref["wire_force"]):
         assert cells.axial[middle & (cells.layer == layer)].mean() == pytest.approx(

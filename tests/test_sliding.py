@@ -89,13 +89,13 @@ def test_large_and_small_sliding_agree_when_sliding_is_small():
         problem = StrandProblem(
             geometry, ContactSettings(model=model), NewtonOptions(atol=1e-2, max_it=15)
         )
-        LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.set_tension, 0.0, 40e3)
-        u_tension = problem.end_displacement()
+        LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
+        u_tension = problem.setup.end_displacement()
         forces = problem.pair_results()["force"].copy()
         LoadStepper(problem.solver, 100.0, 5.0, max_step=200.0).ramp(
-            problem.set_lateral, 0.0, 600.0
+            problem.setup.set_lateral, 0.0, 600.0
         )
-        results[model] = (u_tension, forces, problem.midspan_deflection())
+        results[model] = (u_tension, forces, problem.setup.midspan_deflection())
     (u_s, f_s, d_s), (u_l, f_l, d_l) = results["small"], results["large"]
     assert u_l == pytest.approx(u_s, rel=1e-3)
     assert f_l.sum() == pytest.approx(f_s.sum(), rel=1e-3)
@@ -184,8 +184,8 @@ def test_large_sliding_tension_on_a_nineteen_wire_strand():
             geometry, ContactSettings(model=model), NewtonOptions(atol=1e-2, max_it=12)
         )
         stepper = LoadStepper(problem.solver, 10e3, 100.0)
-        stepper.ramp(problem.set_tension, 0.0, 40e3)
-        ends[model] = problem.end_displacement()
+        stepper.ramp(problem.setup.set_tension, 0.0, 40e3)
+        ends[model] = problem.setup.end_displacement()
         histories[model] = [r.iterations for r in stepper.history]
     print(histories, ends)
     assert sum(r for r in histories["large"]) <= sum(histories["small"]) + 4

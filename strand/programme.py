@@ -1,0 +1,104 @@
+"""Load programmes: the sequence of stages a run takes its test set-up through.
+
+A ``Stage`` ramps one load parameter of the set-up (``"tension"``, ``"lateral"``, ``"curvature"``)
+from wherever it is to a target, in adaptive steps; a ``LoadProgramme`` is the ordered list of
+stages. ``run_programme`` drives a ``StrandProblem`` through it and calls back after every
+converged step, so that recorders write as the run goes. Units: those of each parameter (SI).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from .solver import LoadStepper, StepRecord
+
+__all__ = ["Stage", "LoadProgramme", "run_programme", "cycle_stages"]
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One ramp: ``parameter`` to ``target`` in steps starting at ``first_step``, growing by
+    ``growth`` after easy solves up to ``max_step``, halved down to ``min_step`` on failure.
+    ``extrapolate`` starts each solve from the secant predictor of the last two steps."""
+
+    name: str
+    parameter: str
+    target: float
+    first_step: float
+    min_step: float
+    max_step: float = math.inf
+    growth: float = 1.5
+    extrapolate: bool = False
+
+
+@dataclass(frozen=True)
+class LoadProgramme:
+    """Stages in order; ``cycle_parameter`` names the parameter the cycle stages vary."""
+
+    stages: tuple[Stage, ...]
+    cycle_parameter: str
+
+    def path_lengths(self) -> list[float]:
+        """|target − start| of every stage, every parameter starting at 0."""
+        start: dict[str, float] = {}
+        lengths = []
+        for s in self.stages:
+            lengths.append(abs(s.target - start.get(s.parameter, 0.0)))
+            start[s.parameter] = s.target
+        return lengths
+
+    def weights(self) -> list[float]:
+        """Share of the whole programme (for progress): stages of other parameters (tensioning)
+        count for 10 % together when there is a cycle, the cycle stages by their path length."""
+        lengths = self.path_lengths()
+        cycle = [s.parameter == self.cycle_parameter for s in self.stages]
+        cycle_path = sum(l for l, c in zip(lengths, cycle, strict=True) if c)
+        n_other = sum(1 for c in cycle if not c)
+        other_share = 0.1 if cycle_path > 0 else 1.0
+        return [
+            (1 - other_share) * l / cycle_path if c else other_share / max(n_other, 1)
+            for l, c in zip(lengths, cycle, strict=True)
+        ]
+
+
+def cycle_stages(
+    parameter: str, amplitude: float, cycle, first_step: float, max_step: float, cuts: int,
+    growth: float,
+) -> list[Stage]:  # fmt: skip
+    """Legs ``leg 1, leg 2, …`` to the targets ``cycle`` × ``amplitude``; every leg starts with
+    ``first_step`` (the direction may reverse) and uses the secant predictor."""
+    return [
+        Stage(
+            f"leg {i + 1}",
+            parameter,
+            c * amplitude,
+            first_step,
+            first_step / 2**cuts,
+            max_step,
+            growth,
+            extrapolate=True,
+        )  # fmt: skip
+        for i, c in enumerate(cycle)
+    ]
+
+
+def run_programme(
+    problem, programme: LoadProgramme, on_step: Callable[[Stage, StepRecord], None] | None = None
+) -> None:
+    """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
+    record)`` after every committed step. Raises ``LoadStepFailure`` when a step cannot be cut
+    small enough to converge (the last converged state stays in the problem)."""
+    setup = problem.setup
+    for stage in programme.stages:
+        stepper = LoadStepper(
+            problem.solver, stage.first_step, stage.min_step, max_step=stage.max_step,
+            growth=stage.growth, extrapolate=stage.extrapolate,
+            on_step=(lambda rec, stage=stage: on_step(stage, rec)) if on_step else None,
+        )  # fmt: skip
+
+        def set_load(value, name=stage.parameter):
+            setup.set(name, value)
+
+        stepper.ramp(set_load, setup.get(stage.parameter), stage.target, stage.name)

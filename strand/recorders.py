@@ -1,0 +1,180 @@
+"""Per-step recorders: each writes one output of a run as the run goes, from typed step records.
+
+After every converged step the runner builds a ``StepContext`` (the ``RunStep`` record, the
+problem, and the cell results computed once, on demand) and hands it to each recorder. A recorder
+opens its file when built, appends and flushes at every step (a failed or interrupted run keeps
+every step written so far), and closes in ``close``. Units: SI, named in the column headers.
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol
+
+import numpy as np
+
+from .setups.base import columns, values
+
+__all__ = [
+    "RunStep",
+    "StepContext",
+    "Recorder",
+    "StepTable",
+    "AxialForceTable",
+    "BendingTable",
+    "FieldSeries",
+    "KeyStates",
+]
+
+
+@dataclass(frozen=True)
+class RunStep:
+    """One converged step of a run: its number (from 1), stage, the parameter it ramps and that
+    parameter's value, Newton's effort (iterations, step cuts before it, wall time s, final
+    residual norm N) and the set-up's measures (``state``)."""
+
+    number: int
+    stage: str
+    parameter: str
+    load: float
+    iterations: int
+    cuts: int
+    seconds: float
+    residual: float
+    state: Any
+
+
+@dataclass
+class StepContext:
+    """What recorders see at a step: the record, the problem, and the cell results (lazy)."""
+
+    step: RunStep
+    problem: Any
+    cycle: bool  # a step of the cycle (not of the tensioning)
+    _cells: Any = field(default=None, repr=False)
+    _evaluate: Any = field(default=None, repr=False)
+
+    @property
+    def cells(self):
+        """``post.CellResults`` at this step (computed once)."""
+        if self._cells is None:
+            self._cells = self._evaluate()
+        return self._cells
+
+
+class Recorder(Protocol):
+    def record(self, ctx: StepContext) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class _CsvFile:
+    def __init__(self, path: Path, header: list[str]):
+        self.file = open(path, "w", newline="")  # noqa: SIM115 (closed in close)
+        self.writer = csv.writer(self.file)
+        self.writer.writerow(header)
+        self.file.flush()
+
+    def close(self) -> None:
+        self.file.close()
+
+
+class StepTable(_CsvFile):
+    """``steps.csv``: one row per converged step: number, stage, the set-up's state, Newton's
+    iterations and cuts, wall time (s) and final residual norm (N)."""
+
+    def __init__(self, folder: Path, state_type):
+        super().__init__(
+            Path(folder) / "steps.csv",
+            ["step", "stage", *columns(state_type), "iterations", "cuts", "seconds", "residual_N"],
+        )
+
+    def record(self, ctx: StepContext) -> None:
+        s = ctx.step
+        self.writer.writerow(
+            [s.number, s.stage, *values(s.state), s.iterations, s.cuts, s.seconds, s.residual]
+        )
+        self.file.flush()
+
+
+class AxialForceTable:
+    """``axial_forces.csv``: the axial force of every element at every step, with its wire,
+    layer, initial z (m) and current angle φ (deg), and the value of the set-up's load
+    ``parameter`` (in ``unit``) at the step."""
+
+    FORMAT = ["%d", "%.6g", "%d", "%d", "%d", "%.6e", "%.2f", "%.6e"]
+
+    def __init__(self, folder: Path, parameter: str, unit: str):
+        self.parameter = parameter
+        self.file = open(Path(folder) / "axial_forces.csv", "w", newline="")  # noqa: SIM115
+        self.file.write(f"step,{parameter}_{unit},element,wire,layer,z_m,phi_deg,N_N\n")
+        self.file.flush()
+
+    def record(self, ctx: StepContext) -> None:
+        cells = ctx.cells
+        n = len(cells.axial)
+        load = ctx.problem.setup.get(self.parameter)
+        table = np.column_stack(
+            [np.full(n, ctx.step.number), np.full(n, load), np.arange(n), cells.wire,
+             cells.layer, cells.z, cells.phi, cells.axial]
+        )  # fmt: skip
+        np.savetxt(self.file, table, delimiter=",", fmt=self.FORMAT)
+        self.file.flush()
+
+    def close(self) -> None:
+        self.file.close()
+
+
+class BendingTable(_CsvFile):
+    """``moment_curvature.csv``: the set-up's bending measures at every step of the cycle."""
+
+    def __init__(self, folder: Path, record_type):
+        super().__init__(Path(folder) / "moment_curvature.csv", ["step", *columns(record_type)])
+
+    def record(self, ctx: StepContext) -> None:
+        if not ctx.cycle:
+            return
+        row = ctx.problem.setup.moment_curvature(ctx.cells)
+        self.writer.writerow([ctx.step.number, *values(row)])
+        self.file.flush()
+
+
+class FieldSeries:
+    """``fields.xdmf``: u, θ, section forces and the cell ids at every step (ParaView)."""
+
+    def __init__(self, folder: Path, problem):
+        from .output import FieldWriter, cell_function
+
+        mesh, g = problem.cmesh.mesh, problem.geometry
+        ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]
+        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids)
+
+    def record(self, ctx: StepContext) -> None:
+        self.writer.write(float(ctx.step.number))
+
+    def close(self) -> None:
+        self.writer.close()
+
+
+class KeyStates:
+    """Keeps the cell results of the tensioned state (last step before the cycle) and of the
+    largest |cycle load| reached, with the nodal unknowns there (for summary and figures)."""
+
+    def __init__(self):
+        self.tensioned = None
+        self.peak = None
+        self.peak_w = None
+        self._peak_load = 0.0
+
+    def record(self, ctx: StepContext) -> None:
+        if not ctx.cycle:
+            self.tensioned = ctx.cells
+        elif abs(ctx.step.load) > abs(self._peak_load):
+            self._peak_load = ctx.step.load
+            self.peak = ctx.cells
+            self.peak_w = ctx.problem.w.x.array.copy()
+
+    def close(self) -> None:
+        pass

@@ -1,0 +1,115 @@
+"""What every test set-up has: supports (Dirichlet conditions), loads and ties (pair terms), named
+load parameters, and what it measures, as typed records.
+
+A set-up is built on a ``StrandModel`` and never owns the unknowns: it hands its conditions and
+terms to the solver and reads the model's state. Its ``state()`` is a frozen dataclass whose fields
+carry their unit in ``metadata["unit"]``, so that recorders write any set-up's records as CSV
+columns named ``<field>_<unit>``. Units: m, N, N m, rad.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import field, fields
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["TestSetup", "PenaltyLinks", "quantity", "columns", "values"]
+
+
+def quantity(unit: str, doc: str = ""):
+    """A dataclass field of a record, with its unit (for the CSV column name)."""
+    return field(metadata={"unit": unit, "doc": doc})
+
+
+def columns(record_type) -> list[str]:
+    """CSV column names ``<name>_<unit>`` of a record dataclass (unit-less fields: ``<name>``)."""
+    names = []
+    for f in fields(record_type):
+        unit = f.metadata.get("unit", "")
+        names.append(f"{f.name}_{unit}" if unit else f.name)
+    return names
+
+
+def values(record) -> list:
+    """The field values of a record, in ``columns`` order."""
+    return [getattr(record, f.name) for f in fields(record)]
+
+
+class TestSetup(ABC):
+    """Boundary conditions, loads and measurements of a strand test.
+
+    Attributes:
+        parameters: names of the load parameters, e.g. ("tension", "lateral").
+        cycle_parameter: the one a load programme cycles after tensioning.
+        bcs: Dirichlet conditions on the model's space.
+        terms: pair terms (ties, nodal loads) for the solver.
+    """
+
+    parameters: tuple[str, ...] = ()
+    cycle_parameter: str = ""
+    bcs: list
+    terms: list
+
+    @abstractmethod
+    def set(self, name: str, value: float) -> None:
+        """Set load parameter ``name`` (its SI unit)."""
+
+    @abstractmethod
+    def get(self, name: str) -> float:
+        """Current value of load parameter ``name``."""
+
+    @abstractmethod
+    def state(self):
+        """The set-up's measures at the current state (a frozen dataclass of quantities)."""
+
+    @abstractmethod
+    def moment_curvature(self, cells):
+        """The bending measures at the current state (a frozen dataclass), given the cell
+        results (``post.cell_results``)."""
+
+    def check_parameter(self, name: str) -> None:
+        if name not in self.parameters:
+            raise KeyError(f"{type(self).__name__} has no load parameter {name!r}; "
+                           f"it has {', '.join(self.parameters)}")  # fmt: skip
+
+
+class PenaltyLinks:
+    """Penalty ties u_c(b) − u_c(a) = c_p on displacement components c between node pairs (a, b).
+
+    A ``PairTerms`` with constant 12×12 blocks: residual k(u_b − u_a − c)·(−1, +1) on each tied
+    component. ``offset`` (P, n_components) is a prescribed relative displacement (m), zero
+    unless set (a rigid end section that rotates moves its wire ends relative to its pilot).
+
+    Args:
+        pairs: (P, 2) local dof blocks (a, b).
+        stiffness: N/m.
+        components: displacement components tied (0, 1, 2 = x, y, z).
+    """
+
+    def __init__(self, pairs: npt.ArrayLike, stiffness: float, components=(2,)):
+        self.stencils = np.asarray(pairs, dtype=np.int32).reshape(-1, 2)
+        self.k = stiffness
+        self.components = np.asarray(components, dtype=np.intp).reshape(-1)
+        self.offset = np.zeros((len(self.stencils), len(self.components)))
+        K = np.zeros((12, 12))
+        for c in self.components:
+            i, j = c, 6 + c
+            K[i, i] = K[j, j] = stiffness
+            K[i, j] = K[j, i] = -stiffness
+        self._K = np.broadcast_to(K, (len(self.stencils), 12, 12))
+
+    def evaluate(self, w, jacobian):
+        c = self.components
+        du = w[self.stencils[:, 1]][:, c] - w[self.stencils[:, 0]][:, c] - self.offset
+        f = np.zeros((len(du), 12))
+        f[:, c] = -self.k * du
+        f[:, 6 + c] = self.k * du
+        return f, (self._K.copy() if jacobian else None)
+
+    def commit(self) -> None:
+        pass
+
+    def rollback(self) -> None:
+        pass

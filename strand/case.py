@@ -19,16 +19,22 @@ paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +
     reach = 1e-3              # m, large sliding: sliding room reserved either side of each pair
 
     [load]
+    kind = "saddle"           # saddle: midspan saddle load (the seed paper's test)
+                              # bending: uniform bending by end rotations (the section's M–κ)
     tension = 40e3            # N, end force, held during bending
     lateral = 4.3e3           # N, saddle load amplitude
-    cycle = [1.0, 0.0, -1.0, 0.0]   # lateral targets after tensioning, in units of `lateral`
+    curvature = 0.5           # 1/m, bending: nominal curvature amplitude
+    cycle = [1.0, 0.0, -1.0, 0.0]   # targets after tensioning, in units of lateral or curvature
     saddle_length = 0.02      # m, axial length of the saddle at midspan
-    direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load
+    zone = 0.4                # m, bending: central zone where curvature is measured
+    direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load / stretched fibre
 
     [steps]
     tension = 10e3            # N, first tension increment (grows ×growth after easy steps)
     lateral = 250.0           # N, first lateral increment of each leg of the cycle
     lateral_max = 400.0       # N, largest lateral increment
+    curvature = 0.005         # 1/m, bending: first curvature increment of each leg
+    curvature_max = 0.05      # 1/m, bending: largest curvature increment
     growth = 1.5
     cuts = 6                  # halvings allowed before a step is declared failed
     max_iterations = 12       # Newton iterations per attempt
@@ -76,12 +82,18 @@ class MeshSettings:
     h_max: float = 4e-3  # m
 
 
+LOAD_KINDS = ("saddle", "bending")
+
+
 @dataclass(frozen=True)
 class LoadSettings:
+    kind: str = "saddle"
     tension: float = 40e3  # N
     lateral: float = 4.3e3  # N
+    curvature: float = 0.5  # 1/m
     cycle: tuple[float, ...] = (1.0, 0.0, -1.0, 0.0)
     saddle_length: float = 0.02  # m
+    zone: float = 0.4  # m
     direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
 
 
@@ -90,6 +102,8 @@ class StepSettings:
     tension: float = 10e3  # N
     lateral: float = 250.0  # N
     lateral_max: float = 400.0  # N
+    curvature: float = 0.005  # 1/m
+    curvature_max: float = 0.05  # 1/m
     growth: float = 1.5
     cuts: int = 6
     max_iterations: int = 12
@@ -123,7 +137,7 @@ SECTIONS = {
 }
 
 #: settings that may be zero or negative (all other numbers must be positive)
-_SIGNED = {("load", "tension"), ("load", "lateral")}
+_SIGNED = {("load", "tension"), ("load", "lateral"), ("load", "curvature")}
 
 
 def _value(section: str, key: str, value, default):
@@ -209,6 +223,17 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
     steps = sections["steps"]
     if steps.lateral > steps.lateral_max:
         raise CaseError(f"{source}: [steps] lateral = {steps.lateral} exceeds lateral_max")
+    if steps.curvature > steps.curvature_max:
+        raise CaseError(f"{source}: [steps] curvature = {steps.curvature} exceeds curvature_max")
+    load, length = sections["load"], sections["mesh"].length
+    if load.kind not in LOAD_KINDS:
+        raise CaseError(
+            f"{source}: [load] kind = {load.kind!r} is unknown; choose {' or '.join(LOAD_KINDS)}"
+        )
+    if load.kind == "bending" and load.zone >= length:
+        raise CaseError(
+            f"{source}: [load] zone = {load.zone} m must be shorter than [mesh] length = {length} m"
+        )
     return Case(cable, **sections, source=source)
 
 

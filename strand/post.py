@@ -141,3 +141,72 @@ def bending_stiffness_bounds(cable: Cable) -> tuple[float, float]:
         for lay in cable.layers[1:]
     )
     return ei_min, ei_min + stick
+
+
+def read_table(path) -> dict[str, Array]:
+    """A CSV written by the recorders, as columns (empty arrays when it has no rows)."""
+    import csv
+
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    head, body = rows[0], rows[1:]
+    return {
+        name: np.array([float(r[i]) if r[i] not in ("", "nan") else np.nan for r in body])
+        for i, name in enumerate(head)
+        if name != "stage"
+    }
+
+
+def uniform_bending_report(cable: Cable, tension: float, folder) -> dict:
+    """What the uniform bending test measured, beside the stick–slip law (``analytical``): first
+    loading leg M(κ) at the report curvatures, the initial slope against EI_max and EI_min, the
+    spread of the section moments and of the end reactions, the loop area against Masing's, and
+    the slip onset per layer (first curvature at which 10 % of the pairs on the layer's inner
+    interface slip in the zone) against κ_b."""
+    from .analytical import StickSlipLaw, loop_area, masing
+
+    mk = read_table(f"{folder}/moment_curvature.csv")
+    slip = read_table(f"{folder}/slip.csv")
+    if len(mk["step"]) == 0:
+        return {}
+    kn, k = mk["curvature_nominal_1_per_m"], mk["curvature_1_per_m"]
+    sections = np.column_stack([mk[c] for c in mk if c.startswith("moment_zone")])
+    M = mk["moment_zone_middle_Nm"]
+    reactions = np.column_stack([mk["moment_end_reaction_0_Nm"], mk["moment_end_reaction_L_Nm"]])
+    peak = int(np.argmax(np.abs(kn) >= np.abs(kn).max() - 1e-12))
+    leg = slice(0, peak + 1)
+    laws = {rule: StickSlipLaw(cable, tension, rule) for rule in ("cumulative", "own_tension")}
+    report = {
+        "ei_min": laws["cumulative"].ei_min,
+        "ei_max": laws["cumulative"].ei_max,
+        "initial_slope": float(M[0] / k[0]),
+        "uniformity": float(np.max(np.ptp(sections, axis=1)) / np.abs(M).max()),
+        "reaction_error": float(np.abs(reactions - M[:, None]).max() / np.abs(M).max()),
+        "kappa_max": float(np.abs(k[leg]).max()),
+        "table": [],
+    }
+    order = np.argsort(k[leg])
+    for kappa in (0.001, 0.005, 0.01, 0.05, 0.1, 0.25, 0.5):
+        if k[0] <= kappa <= np.abs(k[leg]).max() * (1 + 1e-9):
+            report["table"].append(
+                (kappa, float(np.interp(kappa, k[leg][order], M[leg][order])),
+                 float(laws["cumulative"].moment(kappa)), float(laws["own_tension"].moment(kappa)))
+            )  # fmt: skip
+    # a whole cycle: the loop area against Masing's on the same curvature path
+    if len(kn) > peak + 2 and abs(kn[-1]) < 1e-12 and np.min(kn) < -0.9 * np.max(kn):
+        path = np.r_[0.0, k]
+        model = np.r_[0.0, M]
+        report["loop_area"] = loop_area(path, model)
+        report["masing_area"] = {
+            rule: loop_area(path, masing(law.moment, path)) for rule, law in laws.items()
+        }
+    onset = []
+    by_step = {int(n): j for j, n in enumerate(slip["step"])}
+    first_leg = [(float(k[j]), by_step.get(int(mk["step"][j]))) for j in range(peak + 1)]
+    for i in range(1, len(cable.layers)):
+        col = slip.get(f"slipping_{i - 1}|{i}")
+        hits = [kj for kj, j in first_leg if col is not None and j is not None and col[j] >= 0.1]
+        onset.append(hits[0] if hits else np.nan)
+    report["slip_onset"] = onset
+    report["slip_onset_law"] = {r: law.slip_onset for r, law in laws.items()}
+    return report

@@ -26,6 +26,7 @@ __all__ = [
     "BendingTable",
     "FieldSeries",
     "KeyStates",
+    "SlipTable",
 ]
 
 
@@ -56,12 +57,21 @@ class StepContext:
     _cells: Any = field(default=None, repr=False)
     _evaluate: Any = field(default=None, repr=False)
 
+    _residual: Any = field(default=None, repr=False)
+
     @property
     def cells(self):
         """``post.CellResults`` at this step (computed once)."""
         if self._cells is None:
             self._cells = self._evaluate()
         return self._cells
+
+    @property
+    def residual(self):
+        """Unconstrained residual (n_blocks, 6) at this step: the reactions at supports."""
+        if self._residual is None:
+            self._residual = self.problem.solver.unconstrained_residual()
+        return self._residual
 
 
 class Recorder(Protocol):
@@ -136,7 +146,7 @@ class BendingTable(_CsvFile):
     def record(self, ctx: StepContext) -> None:
         if not ctx.cycle:
             return
-        row = ctx.problem.setup.moment_curvature(ctx.cells)
+        row = ctx.problem.setup.moment_curvature(ctx.cells, ctx.residual)
         self.writer.writerow([ctx.step.number, *values(row)])
         self.file.flush()
 
@@ -178,3 +188,30 @@ class KeyStates:
 
     def close(self) -> None:
         pass
+
+
+class SlipTable(_CsvFile):
+    """``slip.csv``: per interface i|i+1, the fraction of its contact pairs that slip (at the
+    Coulomb cap) among those whose inner node lies within ``zone`` = (z_min, z_max) (m), at
+    every step, with the step's value of the cycle parameter."""
+
+    def __init__(self, folder: Path, geometry, zone: tuple[float, float], parameter: str,
+                 unit: str):  # fmt: skip
+        pairs = geometry.pairs
+        z = geometry.points[pairs.a, 2]
+        inside = (z >= zone[0]) & (z <= zone[1])
+        self.n_interfaces = len(geometry.cable.layers) - 1
+        self.masks = [inside & (pairs.interface == i) for i in range(self.n_interfaces)]
+        self.parameter = parameter
+        super().__init__(
+            Path(folder) / "slip.csv",
+            ["step", f"{parameter}_{unit}"]
+            + [f"slipping_{i}|{i + 1}" for i in range(self.n_interfaces)],
+        )
+
+    def record(self, ctx: StepContext) -> None:
+        slipping = ctx.problem.pair_results()["slipping"]
+        fractions = [slipping[m].mean() if m.any() else 0.0 for m in self.masks]
+        load = ctx.problem.setup.get(self.parameter)
+        self.writer.writerow([ctx.step.number, load, *fractions])
+        self.file.flush()

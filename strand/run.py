@@ -39,13 +39,15 @@ from .recorders import (  # isort: skip
     FieldSeries,
     KeyStates,
     RunStep,
+    SlipTable,
     StepContext,
     StepTable,
 )
-from .setups.saddle import MidspanBending, SaddleState, SaddleTest  # isort: skip
+from .setups.bending import UniformBendingTest  # isort: skip
+from .setups.saddle import SaddleState, SaddleTest  # isort: skip
 from .solver import LoadStepFailure, NewtonOptions, StepRecord  # isort: skip
 
-__all__ = ["RunResult", "run_case", "summarize", "saddle_programme"]
+__all__ = ["RunResult", "run_case", "summarize", "saddle_programme", "bending_programme"]
 
 
 @dataclass
@@ -136,6 +138,26 @@ def saddle_programme(case: Case) -> LoadProgramme:
     return LoadProgramme((tension, *legs), "lateral")
 
 
+def bending_programme(case: Case) -> LoadProgramme:
+    """Tension to ``load.tension``, then the curvature legs ``load.cycle`` × ``load.curvature``."""
+    steps = case.steps
+    tension = Stage("tension", "tension", case.load.tension, steps.tension,
+                    steps.tension / 2**steps.cuts, growth=steps.growth)  # fmt: skip
+    legs = cycle_stages("curvature", case.load.curvature, case.load.cycle, steps.curvature,
+                        steps.curvature_max, steps.cuts, steps.growth)  # fmt: skip
+    return LoadProgramme((tension, *legs), "curvature")
+
+
+def setup_and_programme(case: Case):
+    """The test set-up factory (taking the model) and the load programme of ``case``."""
+    load = case.load
+    if load.kind == "bending":
+        setup = partial(UniformBendingTest, zone=load.zone, direction=load.direction)
+        return setup, bending_programme(case)
+    setup = partial(SaddleTest, saddle_length=load.saddle_length, direction=load.direction)
+    return setup, saddle_programme(case)
+
+
 def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) -> RunResult:
     """Run ``case``; outputs go to ``folder`` (default: the case's output folder)."""
     folder = Path(folder or case.output.folder)
@@ -146,10 +168,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
 
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     options = NewtonOptions(atol=case.steps.tolerance, max_it=case.steps.max_iterations)
-    setup = partial(
-        SaddleTest, saddle_length=case.load.saddle_length, direction=case.load.direction
-    )
-    programme = saddle_programme(case)
+    setup, programme = setup_and_programme(case)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
     evaluator = CellEvaluator(problem.model)
     print(
@@ -170,16 +189,22 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         )
     result.cycle_parameter = programme.cycle_parameter
     key_states = KeyStates()
+    su = problem.setup
+    cycle = programme.cycle_parameter
     recorders = [
-        StepTable(folder, SaddleState),
-        AxialForceTable(folder, "lateral", "N"),
-        BendingTable(folder, MidspanBending),
+        StepTable(folder, su.state_type),
+        AxialForceTable(folder, cycle, su.units[cycle]),
+        BendingTable(folder, su.bending_type),
+        SlipTable(folder, geometry, su.measuring_zone, cycle, su.units[cycle]),
         key_states,
     ]
     if case.output.fields:
         recorders.append(FieldSeries(folder, problem))
     result.setup_seconds = time.perf_counter() - t_start
-    progress = _Progress(programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3)}, stream)
+    progress = _Progress(
+        programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3), "curvature": ("1/m", 1.0)},
+        stream,
+    )  # fmt: skip
     output_seconds = 0.0
 
     def on_step(stage: Stage, rec: StepRecord) -> None:
@@ -198,7 +223,11 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         for r in recorders:
             r.record(ctx)
         output_seconds += time.perf_counter() - t_out
-        extra = f"δ = {1e3 * step.state.deflection:7.2f} mm" if ctx.cycle else " " * 14
+        extra = " " * 14
+        if ctx.cycle and isinstance(step.state, SaddleState):
+            extra = f"δ = {1e3 * step.state.deflection:7.2f} mm"
+        elif ctx.cycle:
+            extra = f"κ = {step.state.curvature:7.4f} 1/m"
         progress.step(stage, value, rec.iterations, rec.cuts, extra)
 
     try:
@@ -254,7 +283,9 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
                 f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
             )
     peak = result.peak_step
-    if peak is not None:
+    if case.load.kind == "bending":
+        lines += bending_lines(case, result)
+    elif peak is not None:
         lines.append(
             f"largest lateral load {peak.load / 1e3:.2f} kN: midspan deflection "
             f"{1e3 * peak.state.deflection:.2f} mm, end displacement "
@@ -271,3 +302,36 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
     if result.failure:
         lines.append(f"failure: {result.failure}")
     return "\n".join(lines) + "\n"
+
+
+def bending_lines(case: Case, result: RunResult) -> list[str]:
+    """The uniform bending test's summary lines, beside the stick–slip law."""
+    from .post import uniform_bending_report
+
+    r = uniform_bending_report(case.cable, case.load.tension, result.folder)
+    if not r:
+        return []
+    lines = [
+        f"uniform bending, zone {case.load.zone:g} m: section moments uniform within "
+        f"{100 * r['uniformity']:.2f} %, end reactions within {100 * r['reaction_error']:.2f} %",
+        f"first step M/κ = {r['initial_slope']:.0f} N m² = {r['initial_slope'] / r['ei_max']:.2f} "
+        f"EI_max ({r['ei_max']:.0f}) = {r['initial_slope'] / r['ei_min']:.1f} EI_min "
+        f"({r['ei_min']:.1f})",
+        "  κ (1/m)   M model (N m)   stick–slip law: cumulative  own tension",
+    ]
+    for kappa, m, cum, own in r["table"]:
+        lines.append(f"  {kappa:7.3f}   {m:13.2f}   {cum:26.2f}  {own:11.2f}")
+    if "loop_area" in r:
+        ma = r["masing_area"]
+        lines.append(
+            f"loop area {r['loop_area']:.2f} J/m; Masing on the same κ path: "
+            f"{ma['cumulative']:.2f} (cumulative), {ma['own_tension']:.2f} (own tension)"
+        )
+    law = r["slip_onset_law"]
+    lines.append("slip onset (10 % of the layer's inner pairs in the zone), κ (1/m):")
+    for i, k in enumerate(r["slip_onset"], start=1):
+        lines.append(
+            f"  layer {i}: model {k:.4f}   κ_b cumulative {law['cumulative'][i - 1]:.4f}, "
+            f"own tension {law['own_tension'][i - 1]:.4f}"
+        )
+    return lines

@@ -232,11 +232,12 @@ class NewtonSolver:
         out = []
         for t, (idx, rows, mask) in zip(self.terms, self._term_masks(), strict=True):
             f, K = t.evaluate(wn, True)
+            f_rows = f[rows].copy()  # unmasked, for the reactions
             if len(rows):  # only the few stencils that touch a Dirichlet dof
                 f[rows] = np.where(mask, 0.0, f[rows])
                 if K is not None:
                     K[rows] = np.where(mask[:, :, None] | mask[:, None, :], 0.0, K[rows])
-            out.append((idx, f, K))
+            out.append((idx, f, K, rows, f_rows))
         self._cache = (wl.copy(), out)
         self.timings["terms"] += time.perf_counter() - t0
         return out
@@ -267,7 +268,7 @@ class NewtonSolver:
         with b.localForm() as bl:
             bl.set(0.0)
             arr = bl.array_w
-            for idx, f, _ in terms:
+            for idx, f, *_ in terms:
                 arr += np.bincount(idx.ravel(), weights=f.ravel(), minlength=len(arr))
         self.timings["insert"] += time.perf_counter() - t1
         fem_petsc.assemble_vector(b, self.F)
@@ -286,7 +287,7 @@ class NewtonSolver:
         fem_petsc.assemble_matrix(J, self.J, self.bcs, diag=1.0)
         J.assemble(PETSc.Mat.AssemblyType.FLUSH)  # the Dirichlet diagonal was INSERTed
         t2 = time.perf_counter()
-        for idx, _, K in terms:
+        for idx, _, K, *_ in terms:
             if K is not None and len(idx):
                 J.setValuesLocalRCV(
                     idx, idx, np.ascontiguousarray(K), addv=PETSc.InsertMode.ADD_VALUES
@@ -322,6 +323,27 @@ class NewtonSolver:
             list(self._residuals),
             dt,
         )
+
+    def unconstrained_residual(self) -> npt.NDArray[np.float64]:
+        """Residual (internal minus external forces, N and N m) of the current state with no
+        Dirichlet condition applied and no pair term masked, as (n_blocks, 6) over the owned
+        nodes: at supported dofs it is the support reaction. Uses the pair terms' last
+        evaluation when it was at this state (it is after a solve), so their states and
+        histories are left as they are."""
+        b = fem_petsc.create_vector(self.V)
+        with b.localForm() as bl:
+            bl.set(0.0)
+            arr = bl.array_w
+            for idx, f, _, rows, f_rows in self._masked_terms():
+                f = f.copy()
+                f[rows] = f_rows
+                arr += np.bincount(idx.ravel(), weights=f.ravel(), minlength=len(arr))
+        fem_petsc.assemble_vector(b, self.F)
+        b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        n_owned = self.V.dofmap.index_map.size_local
+        out = b.array_r[: 6 * n_owned].reshape(-1, 6).copy()
+        b.destroy()
+        return out
 
     def commit(self) -> None:
         """Accept the current state: it becomes the one ``rollback`` returns to."""

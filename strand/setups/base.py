@@ -42,13 +42,18 @@ class TestSetup(ABC):
 
     Attributes:
         parameters: names of the load parameters, e.g. ("tension", "lateral").
+        units: each parameter's unit as written in column names ("N", "1_per_m").
         cycle_parameter: the one a load programme cycles after tensioning.
+        state_type, bending_type: the record types of ``state()`` and ``moment_curvature()``.
         bcs: Dirichlet conditions on the model's space.
         terms: pair terms (ties, nodal loads) for the solver.
     """
 
     parameters: tuple[str, ...] = ()
+    units: dict[str, str] = {}
     cycle_parameter: str = ""
+    state_type: type
+    bending_type: type
     bcs: list
     terms: list
 
@@ -65,9 +70,17 @@ class TestSetup(ABC):
         """The set-up's measures at the current state (a frozen dataclass of quantities)."""
 
     @abstractmethod
-    def moment_curvature(self, cells):
+    def moment_curvature(self, cells, residual):
         """The bending measures at the current state (a frozen dataclass), given the cell
-        results (``post.cell_results``)."""
+        results (``post.cell_results``) and the unconstrained residual (n_blocks, 6), whose
+        values at supported dofs are the reactions."""
+
+    @property
+    def measuring_zone(self) -> tuple[float, float]:
+        """(z_min, z_max) of initial heights where the set-up measures (m): the middle half of
+        the length unless the set-up says otherwise."""
+        L = self.model.geometry.length
+        return (0.25 * L, 0.75 * L)
 
     def check_parameter(self, name: str) -> None:
         if name not in self.parameters:

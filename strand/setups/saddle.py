@@ -95,7 +95,10 @@ class SaddleTest(TestSetup):
     """
 
     parameters = ("tension", "lateral")
+    units = {"tension": "N", "lateral": "N"}
     cycle_parameter = "lateral"
+    state_type = SaddleState
+    bending_type = MidspanBending
 
     def __init__(
         self,
@@ -182,7 +185,7 @@ class SaddleTest(TestSetup):
             self.tension, self.lateral, self.midspan_deflection(), self.end_displacement()
         )
 
-    def moment_curvature(self, cells, fit_half_length: float = 0.015) -> MidspanBending:
+    def moment_curvature(self, cells, residual=None, fit_half_length=0.015) -> MidspanBending:
         """Bending moment (N m) of the cross-section at z = L/2 and curvature (1/m) of the core.
 
         M = Σ_wires [(x_w − x_core) × n_w + m_w] · (e_z × d), from the elements that the section

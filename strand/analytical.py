@@ -217,12 +217,13 @@ class StickSlipLaw:
         terms = [np.minimum(s * np.abs(k), c) for s, c in zip(self.stick_stiffness, caps)]
         return self.ei_min * k + np.sign(k) * np.sum(terms, axis=0)
 
-    def curvature(self, moment: npt.ArrayLike, kappa_max: float = 10.0) -> Array:
-        """Inverse of the virgin curve (monotonic), by interpolation, 1/m."""
-        grid = np.r_[0.0, np.geomspace(1e-7, kappa_max, 4000)]
-        m = self.moment(grid)
+    def curvature(self, moment: npt.ArrayLike) -> Array:
+        """Inverse of the virgin curve (monotonic), by interpolation on κ ∈ [1e-7, 10] 1/m."""
+        if not hasattr(self, "_inverse"):
+            grid = np.r_[0.0, np.geomspace(1e-7, 10.0, 4000)]
+            self._inverse = (self.moment(grid), grid)
         M = np.asarray(moment, dtype=float)
-        return np.sign(M) * np.interp(np.abs(M), m, grid)
+        return np.sign(M) * np.interp(np.abs(M), *self._inverse)
 
 
 def masing(virgin: Callable[[Array], Array], path: npt.ArrayLike) -> Array:

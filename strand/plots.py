@@ -185,7 +185,9 @@ def results_figures(case, result, problem) -> list[Path]:
         fig.suptitle("change of axial force from the tensioned state to the largest load")
         save_fig(fig, "axial_force_change.png")
 
-    lateral = result.cycle_steps
+    if case.load.kind == "bending":
+        paths.append(bending_figure(case, folder))
+    lateral = result.cycle_steps if case.load.kind == "saddle" else []
     if lateral:
         fig, ax = plt.subplots(figsize=(6, 4.5))
         P = [0.0] + [s.state.lateral / 1e3 for s in lateral]
@@ -230,3 +232,52 @@ def results_figures(case, result, problem) -> list[Path]:
         plotter.camera.zoom(2.2)
         paths.append(save(plotter, folder / "deformed_axial_force.png"))
     return paths
+
+
+def bending_figure(case, folder) -> Path:
+    """``moment_curvature.png`` of the uniform bending test: the zone's M–κ loop, the section
+    moments and end reactions (uniformity), the EI bounds, and the stick–slip law (virgin curve and
+    Masing loop on the measured curvature path, for both friction rules)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .analytical import StickSlipLaw, masing
+    from .post import read_table
+
+    folder = Path(folder)
+    mk = read_table(folder / "moment_curvature.csv")
+    k = np.r_[0.0, mk["curvature_1_per_m"]]
+    M = np.r_[0.0, mk["moment_zone_middle_Nm"]]
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [3, 2]})
+    ax.plot(k, M, "o-", ms=3, color="k", label="strand (mid-zone section)")
+    span = np.abs(k).max() or 1.0
+    for rule, style in (("cumulative", "-"), ("own_tension", "--")):
+        law = StickSlipLaw(case.cable, case.load.tension, rule)
+        ax.plot(k, masing(law.moment, k), style, lw=1.2,
+                label=f"stick–slip law, {rule.replace('_', ' ')} (Masing)")  # fmt: skip
+        ei_min, ei_max = law.ei_min, law.ei_max
+    line = np.array([-span, span])
+    ax.plot(line, ei_max * line, ":", color="tab:red", label=f"EI_max = {ei_max:.0f} N m²")
+    ax.plot(line, ei_min * line, ":", color="tab:blue", label=f"EI_min = {ei_min:.1f} N m²")
+    ax.set_ylim(1.3 * min(M.min(), 0) - 1e-9, 1.3 * max(M.max(), 0) + 1e-9)
+    ax.set_xlabel("zone curvature κ (1/m)")
+    ax.set_ylabel("bending moment M (N m)")
+    ax.set_title(f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN: uniform bending")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    cols = [c for c in mk if c.startswith("moment_")]
+    for c in cols:
+        ax2.plot(mk["step"], mk[c] - mk["moment_zone_middle_Nm"], ".", ms=4,
+                 label=c.removeprefix("moment_").removesuffix("_Nm").replace("_", " "))  # fmt: skip
+    ax2.set_xlabel("step")
+    ax2.set_ylabel("M − M(mid-zone) (N m)")
+    ax2.set_title("uniformity: five sections of the zone, end reactions")
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=7)
+    fig.tight_layout()
+    path = folder / "moment_curvature.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

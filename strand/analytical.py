@@ -181,7 +181,7 @@ class StickSlipLaw:
                 out[k] = slip_part(np.pi / 2)
                 continue
             # tangency a cos p = λ T e^{λp} on [0, π/2]; if none, the quarter turn slips
-            g = lambda p: ak * np.cos(p) - lam * T * np.exp(lam * p)  # noqa: E731
+            g = lambda p, ak=ak: ak * np.cos(p) - lam * T * np.exp(lam * p)  # noqa: E731
             if g(np.pi / 2) >= 0:
                 p = np.pi / 2
             else:
@@ -214,7 +214,9 @@ class StickSlipLaw:
         """The linearised bending law EI_min κ + Σ min(EI_s,i |κ|, M_slip,i) sign κ, N m."""
         k = np.asarray(kappa, dtype=float)
         caps = [2 * l.n / np.pi * l.r * np.cos(l.alpha) * l.f for l in self.layers]
-        terms = [np.minimum(s * np.abs(k), c) for s, c in zip(self.stick_stiffness, caps)]
+        terms = [
+            np.minimum(s * np.abs(k), c) for s, c in zip(self.stick_stiffness, caps, strict=True)
+        ]
         return self.ei_min * k + np.sign(k) * np.sum(terms, axis=0)
 
     def curvature(self, moment: npt.ArrayLike) -> Array:

@@ -47,7 +47,7 @@ from .setups.bending import UniformBendingTest  # isort: skip
 from .setups.saddle import SaddleState, SaddleTest  # isort: skip
 from .solver import LoadStepFailure, NewtonOptions, StepRecord  # isort: skip
 
-__all__ = ["RunResult", "run_case", "summarize", "saddle_programme", "bending_programme"]
+__all__ = ["RunResult", "run_case", "summarize", "tension_then_cycle", "setup_and_programme"]
 
 
 @dataclass
@@ -128,24 +128,16 @@ def _settings_text(case: Case) -> str:
     return "\n".join(lines) + "\n"
 
 
-def saddle_programme(case: Case) -> LoadProgramme:
-    """Tension to ``load.tension``, then the lateral legs ``load.cycle`` × ``load.lateral``."""
-    steps = case.steps
-    tension = Stage("tension", "tension", case.load.tension, steps.tension,
+def tension_then_cycle(case: Case, parameter: str) -> LoadProgramme:
+    """Tension to ``load.tension``, then the legs ``load.cycle`` × the amplitude of
+    ``parameter`` ("lateral" or "curvature"), with that parameter's step settings."""
+    steps, load = case.steps, case.load
+    tension = Stage("tension", "tension", load.tension, steps.tension,
                     steps.tension / 2**steps.cuts, growth=steps.growth)  # fmt: skip
-    legs = cycle_stages("lateral", case.load.lateral, case.load.cycle, steps.lateral,
-                        steps.lateral_max, steps.cuts, steps.growth)  # fmt: skip
-    return LoadProgramme((tension, *legs), "lateral")
-
-
-def bending_programme(case: Case) -> LoadProgramme:
-    """Tension to ``load.tension``, then the curvature legs ``load.cycle`` × ``load.curvature``."""
-    steps = case.steps
-    tension = Stage("tension", "tension", case.load.tension, steps.tension,
-                    steps.tension / 2**steps.cuts, growth=steps.growth)  # fmt: skip
-    legs = cycle_stages("curvature", case.load.curvature, case.load.cycle, steps.curvature,
-                        steps.curvature_max, steps.cuts, steps.growth)  # fmt: skip
-    return LoadProgramme((tension, *legs), "curvature")
+    first, largest = getattr(steps, parameter), getattr(steps, f"{parameter}_max")
+    legs = cycle_stages(parameter, getattr(load, parameter), load.cycle, first, largest,
+                        steps.cuts, steps.growth)  # fmt: skip
+    return LoadProgramme((tension, *legs), parameter)
 
 
 def setup_and_programme(case: Case):
@@ -153,9 +145,9 @@ def setup_and_programme(case: Case):
     load = case.load
     if load.kind == "bending":
         setup = partial(UniformBendingTest, zone=load.zone, direction=load.direction)
-        return setup, bending_programme(case)
+        return setup, tension_then_cycle(case, "curvature")
     setup = partial(SaddleTest, saddle_length=load.saddle_length, direction=load.direction)
-    return setup, saddle_programme(case)
+    return setup, tension_then_cycle(case, "lateral")
 
 
 def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) -> RunResult:

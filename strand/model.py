@@ -13,6 +13,7 @@ import numpy.typing as npt
 
 import strand  # noqa: F401
 
+import dolfinx  # isort: skip
 from dolfinx import fem  # isort: skip
 from mpi4py import MPI  # isort: skip
 
@@ -87,6 +88,14 @@ class StrandModel:
         z = 0.0 if end == 0 else self.geometry.length
         assert np.allclose(self.geometry.points[ends, 2], z)
         return ends
+
+    def end_vertices(self, end: int) -> npt.NDArray[np.int32]:
+        """Mesh vertices of the end section z = 0 (``end`` = 0) or z = L (1)."""
+        mesh = self.cmesh.mesh
+        L = self.geometry.length
+        z = 0.0 if end == 0 else L
+        mesh.topology.create_connectivity(0, 1)
+        return dolfinx.mesh.locate_entities(mesh, 0, lambda p: np.abs(p[2] - z) < 1e-9 * L)
 
     def core_points(self) -> npt.NDArray[np.int64]:
         """Input indices of the core's points, from z = 0 to L."""

@@ -182,7 +182,6 @@ def uniform_bending_report(cable: Cable, tension: float, folder) -> dict:
         "initial_slope": float(M[0] / k[0]),
         "uniformity": float(np.max(np.ptp(sections, axis=1)) / np.abs(M).max()),
         "reaction_error": float(np.abs(reactions - M[:, None]).max() / np.abs(M).max()),
-        "kappa_max": float(np.abs(k[leg]).max()),
         "table": [],
     }
     order = np.argsort(k[leg])

@@ -47,8 +47,8 @@ from dolfinx import fem  # isort: skip
 
 from ..contact.kinematics import rotation_matrix  # isort: skip
 from ..model import StrandModel  # isort: skip
+from ..post import section_resultants  # isort: skip
 from .base import PenaltyLinks, TestSetup, quantity  # isort: skip
-from .saddle import end_vertices  # isort: skip
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]
 
@@ -160,12 +160,12 @@ class UniformBendingTest(TestSetup):
         self.ends0 = model.wire_ends(0)
         self.ends1 = model.wire_ends(1)
         self._bc0 = fem.Function(V)
-        blocks0 = fem.locate_dofs_topological(V, 0, end_vertices(model, 0))
+        blocks0 = fem.locate_dofs_topological(V, 0, model.end_vertices(0))
         self._blocks0 = i2b[self.ends0]
         assert set(blocks0) == set(self._blocks0)
         bcs = [fem.dirichletbc(self._bc0, blocks0)]
         # end z = L: rotations prescribed, translations tied to the pilot (the core's end)
-        vertices1 = end_vertices(model, 1)
+        vertices1 = model.end_vertices(1)
         self._theta1 = [fem.Constant(model.cmesh.mesh, 0.0) for _ in range(3)]
         for k in range(3):
             Vk = V.sub(3 + k)
@@ -188,7 +188,7 @@ class UniformBendingTest(TestSetup):
         a, b = L / 2 - self.zone / 2, L / 2 + self.zone / 2
         self._zone_core = core[(zc >= a - 1e-12) & (zc <= b + 1e-12)]
         self.sections = np.linspace(a, b, 5)
-        self._mid_core = i2b[core[np.argmin(np.abs(zc - L / 2))]]
+        self._section_core = core[np.argmin(np.abs(zc - self.sections[2]))]
 
     # -- loads -------------------------------------------------------------------------------------
     def set(self, name: str, value: float) -> None:
@@ -268,15 +268,9 @@ class UniformBendingTest(TestSetup):
         return float(m0 @ self.axis), float(-m1 @ self.axis)
 
     def moment_curvature(self, cells, residual: Array) -> ZoneBending:
-        from ..post import section_resultants
-
-        moments = []
-        for z in self.sections:
-            M, F = section_resultants(self.model, cells, z)
-            moments.append(-float(M @ self.axis))
-        core = self.model.core_points()
-        mid = core[np.argmin(np.abs(self.model.geometry.points[core, 2] - self.sections[2]))]
-        _, F = section_resultants(self.model, cells, self.sections[2])
-        axial = float(F @ self._core_tangents(np.array([mid]))[0])
+        resultants = [section_resultants(self.model, cells, z) for z in self.sections]
+        moments = [-float(M @ self.axis) for M, _ in resultants]
+        t_mid = self._core_tangents(np.array([self._section_core]))[0]
+        axial = float(resultants[2][1] @ t_mid)  # the middle section, along the core's tangent
         m0, m1 = self.end_reactions(residual)
         return ZoneBending(self._curvature, self.zone_curvature(), *moments, m0, m1, axial)

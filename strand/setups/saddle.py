@@ -18,14 +18,14 @@ import numpy.typing as npt
 
 import strand  # noqa: F401
 
-import dolfinx  # isort: skip
 from dolfinx import fem  # isort: skip
 
 from ..model import StrandModel  # isort: skip
+from ..post import section_resultants  # isort: skip
 from ..solver import NodalLoad  # isort: skip
 from .base import PenaltyLinks, TestSetup, quantity  # isort: skip
 
-__all__ = ["SaddleTest", "SaddleState", "MidspanBending", "saddle_weights", "end_vertices"]
+__all__ = ["SaddleTest", "SaddleState", "MidspanBending", "saddle_weights"]
 
 Array = npt.NDArray[np.float64]
 
@@ -53,15 +53,6 @@ def saddle_weights(points: Array, direction: Array) -> tuple[npt.NDArray[np.intp
     alpha, beta = np.linalg.solve(A, [1.0, 0.0])
     weights = c * (alpha + beta * s)
     return pressed, weights[:, None] * inward[pressed]
-
-
-def end_vertices(model: StrandModel, end: int) -> npt.NDArray[np.int32]:
-    """Mesh vertices of the end section z = 0 (``end`` = 0) or z = L (1)."""
-    mesh = model.cmesh.mesh
-    L = model.geometry.length
-    z = 0.0 if end == 0 else L
-    mesh.topology.create_connectivity(0, 1)
-    return dolfinx.mesh.locate_entities(mesh, 0, lambda p: np.abs(p[2] - z) < 1e-9 * L)
 
 
 @dataclass(frozen=True)
@@ -113,7 +104,7 @@ class SaddleTest(TestSetup):
         self.direction = np.asarray(direction, float) / np.linalg.norm(direction)
 
         # ends: z = 0 clamped; z = L: only u_z free, tied to the pilot (the core's end node)
-        start, end = end_vertices(model, 0), end_vertices(model, 1)
+        start, end = model.end_vertices(0), model.end_vertices(1)
         bcs = [fem.dirichletbc(np.zeros(6), fem.locate_dofs_topological(V, 0, start), V)]
         for i in (0, 1, 3, 4, 5):
             Vi = V.sub(i)
@@ -192,8 +183,6 @@ class SaddleTest(TestSetup):
         cuts; κ = −u_d″ from a quadratic fit of the core's lateral displacement over
         ±``fit_half_length``. Both change sign so that a positive load gives positive values.
         """
-        from ..post import section_resultants
-
         model = self.model
         g = model.geometry
         L = g.length

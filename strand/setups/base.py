@@ -15,7 +15,7 @@ from dataclasses import field, fields
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["TestSetup", "PenaltyLinks", "quantity", "columns", "values"]
+__all__ = ["TestSetup", "PenaltyLinks", "pilot_links", "quantity", "columns", "values"]
 
 
 def quantity(unit: str, doc: str = ""):
@@ -126,3 +126,14 @@ class PenaltyLinks:
 
     def rollback(self) -> None:
         pass
+
+
+def pilot_links(
+    input_to_block: npt.NDArray[np.int32], ends: npt.ArrayLike, stiffness: float, components=(2,)
+) -> tuple[int, PenaltyLinks]:
+    """A rigid end section: its first wire end (the core's) is the pilot, every other wire end is
+    tied to it on ``components``. Returns the pilot's dof block and the links."""
+    blocks = input_to_block[np.asarray(ends)]
+    pilot = int(blocks[0])
+    pairs = np.column_stack([np.full(len(blocks) - 1, pilot), blocks[1:]])
+    return pilot, PenaltyLinks(pairs, stiffness, components)

@@ -48,7 +48,7 @@ from dolfinx import fem  # isort: skip
 from ..contact.kinematics import rotation_matrix  # isort: skip
 from ..model import StrandModel  # isort: skip
 from ..post import section_resultants  # isort: skip
-from .base import PenaltyLinks, TestSetup, quantity  # isort: skip
+from .base import TestSetup, pilot_links, quantity  # isort: skip
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]
 
@@ -172,12 +172,7 @@ class UniformBendingTest(TestSetup):
             dofs = fem.locate_dofs_topological(Vk, 0, vertices1)
             bcs.append(fem.dirichletbc(self._theta1[k], dofs, Vk))
         self.bcs = bcs
-        self.pilot = int(i2b[self.ends1[0]])
-        self.links = PenaltyLinks(
-            np.column_stack([np.full(len(self.ends1) - 1, self.pilot), i2b[self.ends1[1:]]]),
-            link_stiffness,
-            components=(0, 1, 2),
-        )
+        self.pilot, self.links = pilot_links(i2b, self.ends1, link_stiffness, (0, 1, 2))
         core = model.core_points()
         self.strut = CoreStrut(
             np.column_stack([i2b[core[:-1]], i2b[core[1:]]]), np.diff(g.points[core], axis=0)

@@ -23,7 +23,7 @@ from dolfinx import fem  # isort: skip
 from ..model import StrandModel  # isort: skip
 from ..post import section_resultants  # isort: skip
 from ..solver import NodalLoad  # isort: skip
-from .base import PenaltyLinks, TestSetup, quantity  # isort: skip
+from .base import TestSetup, pilot_links, quantity  # isort: skip
 
 __all__ = ["SaddleTest", "SaddleState", "MidspanBending", "saddle_weights"]
 
@@ -111,10 +111,7 @@ class SaddleTest(TestSetup):
             bcs.append(fem.dirichletbc(0.0, fem.locate_dofs_topological(Vi, 0, end), Vi))
         self.bcs = bcs
         ends = model.wire_ends(1)
-        self.pilot = int(i2b[ends[0]])
-        self.links = PenaltyLinks(
-            np.column_stack([np.full(len(ends) - 1, self.pilot), i2b[ends[1:]]]), link_stiffness
-        )
+        self.pilot, self.links = pilot_links(i2b, ends, link_stiffness)
 
         # loads: tension on the pilot, one saddle for each sign of P
         self.tension_load = NodalLoad([self.pilot], [[0, 0, 1.0, 0, 0, 0]])

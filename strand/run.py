@@ -44,7 +44,7 @@ from .recorders import (  # isort: skip
     StepTable,
 )
 from .setups.bending import UniformBendingTest  # isort: skip
-from .setups.saddle import SaddleState, SaddleTest  # isort: skip
+from .setups.saddle import SaddleTest  # isort: skip
 from .solver import LoadStepFailure, NewtonOptions, StepRecord  # isort: skip
 
 __all__ = ["RunResult", "run_case", "summarize", "tension_then_cycle", "setup_and_programme"]
@@ -215,11 +215,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         for r in recorders:
             r.record(ctx)
         output_seconds += time.perf_counter() - t_out
-        extra = " " * 14
-        if ctx.cycle and isinstance(step.state, SaddleState):
-            extra = f"δ = {1e3 * step.state.deflection:7.2f} mm"
-        elif ctx.cycle:
-            extra = f"κ = {step.state.curvature:7.4f} 1/m"
+        extra = step.state.progress() if ctx.cycle else " " * 14
         progress.step(stage, value, rec.iterations, rec.cuts, extra)
 
     try:

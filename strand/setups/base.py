@@ -67,7 +67,8 @@ class TestSetup(ABC):
 
     @abstractmethod
     def state(self):
-        """The set-up's measures at the current state (a frozen dataclass of quantities)."""
+        """The set-up's measures at the current state (a frozen dataclass of quantities, with a
+        ``progress()`` method giving the measure a progress line shows)."""
 
     @abstractmethod
     def moment_curvature(self, cells, residual):

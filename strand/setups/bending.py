@@ -96,6 +96,10 @@ class UniformBendingState:
     curvature: float = quantity("1_per_m", "core curvature over the measuring zone")
     end_displacement: float = quantity("m", "displacement of the free end along its axis")
 
+    def progress(self) -> str:
+        """The measure a progress line shows."""
+        return f"κ = {self.curvature:7.4f} 1/m"
+
 
 @dataclass(frozen=True)
 class ZoneBending:

@@ -64,6 +64,10 @@ class SaddleState:
     deflection: float = quantity("m", "core's lateral displacement at midspan")
     end_displacement: float = quantity("m", "axial displacement of the end section")
 
+    def progress(self) -> str:
+        """The measure a progress line shows."""
+        return f"δ = {1e3 * self.deflection:7.2f} mm"
+
 
 @dataclass(frozen=True)
 class MidspanBending:

@@ -180,16 +180,13 @@ class StickSlipLaw:
             if not np.isfinite(ak):
                 out[k] = slip_part(np.pi / 2)
                 continue
-            # tangency a cos p = λ T e^{λp} on [0, π/2]; if none, the quarter turn slips
+            # tangency a cos p = λ T e^{λp}: g(0) = a − λT > 0 > g(π/2), so one root in between
             g = lambda p, ak=ak: ak * np.cos(p) - lam * T * np.exp(lam * p)  # noqa: E731
-            if g(np.pi / 2) >= 0:
-                p = np.pi / 2
-            else:
-                lo, hi = 0.0, np.pi / 2
-                for _ in range(60):
-                    mid = 0.5 * (lo + hi)
-                    lo, hi = (mid, hi) if g(mid) > 0 else (lo, mid)
-                p = 0.5 * (lo + hi)
+            lo, hi = 0.0, np.pi / 2
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if g(mid) > 0 else (lo, mid)
+            p = 0.5 * (lo + hi)
             dT0 = T * (np.exp(lam * p) - 1)
             stick = ak * ((np.pi / 2 - p) / 2 + np.sin(2 * p) / 4 - np.sin(p) * np.cos(p))
             out[k] = slip_part(p) + stick + dT0 * np.cos(p)

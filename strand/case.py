@@ -11,6 +11,7 @@ paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +
 
     [contact]
     normal = "auto"           # auto (director with friction, frozen without) | neighbour | director | frozen
+    compliance = "penalty"    # penalty (k_point, k_line, g_lim) | hertz (Hertz normal, Mindlin stick)
     k_point = 5e7             # N/m, penalty per crossing
     k_line = 5e9              # N/m², core | layer-1 penalty per metre of wire
     g_lim = 5e-6              # m, elastic slip at which friction reaches μP

@@ -64,9 +64,7 @@ class StrandModel:
         self.beam = ReissnerBeam(self.w, self.section)
         self.i2b = input_to_block(self.V)
         if cs.model == "large":
-            self.contact = sliding_groups(
-                geometry, self.i2b, cs.k_point, cs.k_line, cs.g_lim, cs.friction, cs.reach
-            )
+            self.contact = sliding_groups(geometry, self.i2b, cs)
         else:
             self.contact = contact_groups(geometry, self.i2b, cs)
 

@@ -11,6 +11,15 @@ import strand  # noqa: F401
 
 from forms import CircularSection, ReissnerBeam  # isort: skip
 from strand.contact.element import ContactGroup, ContactSettings  # isort: skip
+from strand.contact.hertz import compliance as compliance_of  # isort: skip
+from strand.contact.hertz import mindlin_ratio, point_coefficient  # isort: skip
+from strand.contact.laws import (  # isort: skip
+    ElasticSlip,
+    HertzLineLaw,
+    HertzPointLaw,
+    Mindlin,
+    PenaltyLaw,
+)
 from strand.contact.measure import centreline_gaps  # isort: skip
 from strand.contact.kinematics import (  # isort: skip
     NORMALS,
@@ -30,11 +39,32 @@ K_N, MU, G_LIM = 5e7, 0.5, 5e-6
 KINDS = [(n, line) for n in NORMALS for line in (False, True)]
 
 
-def crossed_pair(normal: str, line: bool, angle: float, n_pairs: int = 4, h: float = 3e-3):
+def pair_laws(compliance: str, line: bool, angle: float, n_pairs: int):
+    """Penalty + elastic slip (K_N, G_LIM), or Hertz + Mindlin for steel wires of R_A, R_B."""
+    full = np.full(n_pairs, 1.0)
+    if compliance == "penalty":
+        return PenaltyLaw(K_N * full), ElasticSlip(MU * full, G_LIM)
+    c = compliance_of(2.1e11 * full, 0.3)
+    normal = (
+        HertzLineLaw(R_A * full, R_B * full, c, c, 5e-3 * full)
+        if line
+        else HertzPointLaw(point_coefficient(R_A, R_B, angle, 2.1e11, 0.3, 2.1e11, 0.3) * full)
+    )
+    return normal, Mindlin(MU * full, mindlin_ratio(2.1e11, 0.3, 2.1e11, 0.3))
+
+
+def crossed_pair(
+    normal: str,
+    line: bool,
+    angle: float,
+    n_pairs: int = 4,
+    h: float = 3e-3,
+    compliance: str = "penalty",
+):
     """Pairs of two straight wires crossing at ``angle`` (a along x, b above it), as a group.
 
     Each pair uses its own nodes (stencil blocks 0..k·n_pairs), so random per-pair states can be
-    imposed. For line pairs the wires are nearly parallel (angle 0.1 rad).
+    imposed. For line pairs the wires are nearly parallel (angle 0.1 rad; Hertz: a 5 mm line).
     """
     if line:
         angle = 0.1
@@ -50,9 +80,8 @@ def crossed_pair(normal: str, line: bool, angle: float, n_pairs: int = 4, h: flo
     n0 = np.tile([0.0, 0.0, 1.0], (n_pairs, 1))
     t0 = np.repeat(np.stack([ta, tb])[None], n_pairs, 0)
     full = np.full(n_pairs, 1.0)
-    return ContactGroup(
-        stencils, X, line, R_A * full, R_B * full, n0, K_N * full, MU * full, G_LIM, normal, t0
-    )
+    laws = pair_laws(compliance, line, angle, n_pairs)
+    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0)
 
 
 def fd_tangent(group, w: np.ndarray, step: float = 1e-9) -> np.ndarray:
@@ -97,11 +126,15 @@ def test_gap_hessian_matches_finite_differences(normal, line):
     assert np.allclose(H_ref, H_ref.transpose(0, 2, 1), atol=1e-9 * max(scale, 1.0))
 
 
-@pytest.mark.parametrize(("normal", "line"), KINDS)
-def test_pair_tangent_matches_finite_differences_open_stick_slip(normal, line):
+@pytest.mark.parametrize(
+    ("normal", "line", "compliance"),
+    [(n, line, "penalty") for n, line in KINDS]
+    + [("director", line, "hertz") for line in (False, True)],
+)
+def test_pair_tangent_matches_finite_differences_open_stick_slip(normal, line, compliance):
     """Residual derivatives in the three states, after a committed step with random rotations."""
     rng = np.random.default_rng(7)
-    group = crossed_pair(normal, line, np.radians(25))
+    group = crossed_pair(normal, line, np.radians(25), compliance=compliance)
     P, k = group.stencils.shape
     w = np.zeros((P * k, 6))
     w[:, 3:] = rng.normal(scale=0.05, size=(P * k, 3))
@@ -212,9 +245,8 @@ def test_crossed_beams_share_a_load_through_the_contact(angle):
         [R_A],
         [R_A],
         [[0, 0, 1.0]],
-        [K_N],
-        [0.0],
-        G_LIM,
+        PenaltyLaw(np.array([K_N])),
+        None,
         "neighbour",
     )
     load = NodalLoad([b], [[0, 0, -1.0, 0, 0, 0]])

@@ -1,9 +1,18 @@
-"""Contact laws: penalty, stick, slip, unload/reload through the return map, exact derivatives."""
+"""Contact laws: penalty, stick, slip, unload/reload through the return map, exact derivatives;
+Hertz and Mindlin against their closed forms."""
 
 import numpy as np
 import pytest
 
-from strand.contact.laws import coulomb_return, normal_force, tangential_stiffness
+from strand.contact.hertz import compliance, crossed_cylinders, mindlin_ratio, point_coefficient
+from strand.contact.laws import (
+    HertzLineLaw,
+    HertzPointLaw,
+    Mindlin,
+    coulomb_return,
+    normal_force,
+    tangential_stiffness,
+)
 
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6
 
@@ -86,3 +95,86 @@ def test_derivatives_match_finite_differences(state):
         - coulomb_return(t_old, slip, n, p - hp, mu, k_t).traction
     ) / (2 * hp)
     np.testing.assert_allclose(r.d_pressure, fd, rtol=1e-6, atol=1e-9)
+
+
+# -- contact mechanics (Hertz, Mindlin) ---------------------------------------------------------
+R, E_AL, NU_AL = 1.688e-3, 69e9, 0.33  # a Cardinal aluminium wire
+
+
+def test_crossed_cylinders_at_right_angles_are_a_sphere_on_a_flat():
+    """R₁ = R₂ = R at 90°: Hertz's sphere, P = (4/3) E* R^{1/2} δ^{3/2}, exactly."""
+    e_star = 1 / (2 * compliance(E_AL, NU_AL))
+    assert crossed_cylinders(R, R, np.pi / 2) == pytest.approx((R, R), rel=1e-12)
+    c = point_coefficient(R, R, np.pi / 2, E_AL, NU_AL, E_AL, NU_AL)
+    assert c == pytest.approx(4 / 3 * e_star * np.sqrt(R), rel=1e-12)
+
+
+@pytest.mark.parametrize("deg", [18.0, 25.0, 40.0, 60.0])
+def test_hamrock_brewe_fit_against_the_exact_elliptical_hertz_solution(deg):
+    """At the crossing angles of stranded wires (18–25° for Cardinal) the fitted P(δ) is within
+    5 % of Hertz's elliptical solution (Johnson 1985 §3.5: ū = (L − Mx² − Ny²)/E*, with
+    L = p₀bK(e), M = p₀b(K − E)/(e²a²), N = p₀b((a/b)²E − K)/(e²a²), P = 2πabp₀/3)."""
+    special = pytest.importorskip("scipy.special")
+    optimize = pytest.importorskip("scipy.optimize")
+    K, E = special.ellipk, special.ellipe  # of m = e²
+    beta = np.radians(deg)
+    rx, ry = crossed_cylinders(R, R, beta)
+    A, B = 1 / (2 * rx), 1 / (2 * ry)
+    m = optimize.brentq(lambda m: (E(m) / (1 - m) - K(m)) / (K(m) - E(m)) - B / A, 1e-9, 1 - 1e-12)
+    e_star = 1 / (2 * compliance(E_AL, NU_AL))
+    delta = 5e-6
+    a2 = delta * (K(m) - E(m)) / (A * m * K(m))
+    a, b = np.sqrt(a2), np.sqrt(a2 * (1 - m))
+    p0 = A * e_star * m * a2 / (b * (K(m) - E(m)))
+    exact = 2 * np.pi * a * b * p0 / 3 / delta**1.5
+    assert point_coefficient(R, R, beta, E_AL, NU_AL, E_AL, NU_AL) == pytest.approx(exact, rel=0.05)
+
+
+@pytest.mark.parametrize("kind", ["point", "line"])
+def test_hertz_laws_derivatives_and_stiffness_at_force(kind):
+    """dp/dg matches differences of p; ``stiffness(p)`` is dp/dδ at the approach giving p; open
+    pairs carry nothing; the start offset keeps p(0) = 0 with a positive first tangent."""
+    n = 5
+    c = compliance(np.full(n, E_AL), NU_AL)
+    law = (
+        HertzPointLaw(np.full(n, point_coefficient(R, R, np.radians(20), E_AL, NU_AL, E_AL, NU_AL)))
+        if kind == "point"
+        else HertzLineLaw(np.full(n, 1.688e-3), np.full(n, 1.688e-3), c, c, np.full(n, 4e-3))
+    )
+    g = -np.array([0.0, 1e-7, 1e-6, 5e-6, 2e-5])
+    p, dp = law.force(g)
+    assert p[0] == 0.0 and dp[0] < 0.0 and np.all(np.diff(p) > 0)
+    h = 1e-11
+    fd = (law.force(g + h)[0] - law.force(g - h)[0]) / (2 * h)
+    np.testing.assert_allclose(dp[1:], fd[1:], rtol=1e-5)  # g = 0 is the kink
+    np.testing.assert_allclose(law.stiffness(p), -dp, rtol=1e-9)
+    assert np.all(law.force(np.full(n, 1e-6))[0] == 0.0)
+
+
+def test_hertz_line_law_matches_the_two_cylinder_formula():
+    """The inverted line law returns the load whose approach (Johnson eq. 5.39) is the given one."""
+    c = compliance(E_AL, NU_AL)
+    law = HertzLineLaw(*(np.array([v]) for v in (1.688e-3, 1.688e-3, c, c, 1.0)))
+    q = 2e4  # N/m
+    b = np.sqrt(4 * q * (1.688e-3 / 2) / (np.pi / (2 * c)))
+    delta = q / np.pi * 2 * c * (2 * np.log(4 * 1.688e-3 / b) - 1)
+    assert law.force(np.array([-delta + law.START]))[0][0] + law._offset()[0] == pytest.approx(
+        q, rel=1e-9
+    )
+
+
+def test_mindlin_stick_stiffness():
+    """Like materials: k_T/k_N = 2(1 − ν)/(2 − ν); K_T = that × dp/dδ at the start force, so a
+    crossing reaches μP after μP/K_T ≈ (2/3)·(3μP/(16G*a)) (Mindlin's gross-slip distance)."""
+    assert mindlin_ratio(E_AL, NU_AL, E_AL, NU_AL) == pytest.approx(2 * (1 - NU_AL) / (2 - NU_AL))
+    law = HertzPointLaw(np.array([point_coefficient(R, R, np.pi / 2, E_AL, NU_AL, E_AL, NU_AL)]))
+    friction = Mindlin(np.array([MU]), mindlin_ratio(E_AL, NU_AL, E_AL, NU_AL))
+    P = np.array([50.0])
+    e_star = 1 / (2 * compliance(E_AL, NU_AL))
+    g_star = E_AL / (2 * (1 + NU_AL)) / (2 * (2 - NU_AL))
+    a = (3 * P * R / (4 * e_star)) ** (1 / 3)
+    k_t = friction.stiffness(P, law)
+    assert k_t[0] == pytest.approx(8 * g_star * a[0], rel=1e-3)  # the start offset: 1e-3
+    gross = 3 * MU * P / (16 * g_star * a)
+    assert (MU * P / k_t)[0] == pytest.approx(2 / 3 * gross[0], rel=1e-3)
+    assert friction.stiffness(np.array([0.0]), law)[0] == 0.0

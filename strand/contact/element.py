@@ -1,17 +1,11 @@
-"""The small-sliding contact element: pair residuals and consistent tangents for Newton.
+"""The small-sliding contact element: pairs fixed at t = 0, their gaps and slips from the stencil.
 
-Each ``ContactGroup`` holds the pairs of one kind (crossings or line pairs) and implements the
-solver's ``PairTerms`` protocol: given the nodal unknowns, it returns every pair's residual vector
-and tangent block at once (numpy over all pairs, no loop). Per pair, with stencil dofs q:
-
-* normal part: energy ½K_N⟨−g⟩², residual −p ∂g/∂q, tangent K_N H(−g) ∂g⊗∂g − p ∂²g/∂q²;
-* friction: slip Δg_T = S Δq since the last converged step, S = P_n[−I, r_a n×, I, r_b n×]
-  acting on (u_a, θ_a, u_b, θ_b), n and the tangent plane frozen at the start of the step; the
-  traction t from the radial return (``laws.coulomb_return``); residual Sᵀt, tangent
-  Sᵀ (∂t/∂Δg_T) S + Sᵀ (∂t/∂p)⊗(∂p/∂q) — unsymmetric in slip.
-
-History (traction, normal, normal force, nodal values of a and b) is committed after converged
-steps only. Units: m, N, rad.
+Each ``ContactGroup`` holds the pairs of one kind (crossings or line pairs); the shared
+``PairGroup`` applies the normal and friction laws (``strand.contact.group``). Per pair, the gap is
+one of ``kinematics``'s normals, and the slip since the last converged step is Δg_T = S Δq with
+S = P_n[−I, r_a n×, I, r_b n×] acting on (u_a, θ_a, u_b, θ_b): the relative motion of the two
+surface points, n and the tangent plane frozen at the start of the step. ``contact_groups`` builds
+the groups of a strand and their laws from ``ContactSettings``. Units: m, N, rad.
 """
 
 from __future__ import annotations
@@ -23,17 +17,22 @@ import numpy.typing as npt
 
 from ..cable import CableError
 from ..geometry import LINE, POINT, StrandGeometry
+from .group import PairGroup, PairKinematics
+from .hertz import compliance, mindlin_ratio, point_coefficient
 from .kinematics import NORMALS, gap_derivatives, skew, stencil_nodes
-from .laws import coulomb_return, normal_force, tangential_stiffness
+from .laws import (
+    ElasticSlip,
+    FrictionLaw,
+    HertzLineLaw,
+    HertzPointLaw,
+    Mindlin,
+    NormalLaw,
+    PenaltyLaw,
+)
 
-__all__ = [
-    "ContactSettings",
-    "ContactGroup",
-    "ContactState",
-    "contact_groups",
-    "friction_terms",
-    "tangential_part",
-]
+__all__ = ["ContactSettings", "ContactGroup", "contact_groups", "pair_laws"]
+
+COMPLIANCES = ("penalty", "hertz")
 
 Array = npt.NDArray[np.float64]
 
@@ -51,6 +50,11 @@ class ContactSettings:
             A frictionless strand has near-zero-energy modes (wires rolling around the layer
             below) that only the frozen normal's spurious stiffness holds; its gaps are then only
             approximate in bending (up to 11 µm). See ``strand.contact.kinematics``.
+        compliance: "penalty" (the seed paper's: a penalty K_N, and friction reaching μP after an
+            elastic slip g_lim) or "hertz" (contact mechanics from the wires' radii and moduli and
+            the current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
+            contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
+            ``strand.contact.hertz``). k_point, k_line and g_lim apply to "penalty" only.
         k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
         k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
             line pair gets k_line × its tributary length.
@@ -63,6 +67,7 @@ class ContactSettings:
     """
 
     normal: str = "auto"
+    compliance: str = "penalty"
     k_point: float = 5e7
     k_line: float = 5e9
     g_lim: float = 5e-6
@@ -77,6 +82,11 @@ class ContactSettings:
             raise CableError(
                 f"contact normal {self.normal!r} is unknown; choose auto, {', '.join(NORMALS)}"
             )
+        if self.compliance not in COMPLIANCES:
+            raise CableError(
+                f"contact compliance {self.compliance!r} is unknown; choose "
+                f"{' or '.join(COMPLIANCES)}"
+            )
         if self.model not in ("small", "large"):
             raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
         for name in ("k_point", "k_line", "g_lim", "reach"):
@@ -85,51 +95,15 @@ class ContactSettings:
                 raise CableError(f"contact {name} = {value!r}: must be a positive number")
 
 
-@dataclass
-class ContactState:
-    """Per-pair results of the last evaluation: gap g (m), normal force p (N), traction t (N),
-    current normal n, whether the pair slips."""
-
-    gap: Array
-    force: Array
-    traction: Array
-    normal: Array
-    slipping: npt.NDArray[np.bool_]
-
-
-def friction_terms(S, dq, p, dp_dq, mu, p_old, t_old, n_old, g_lim, jacobian: bool):
-    """Coulomb friction of all pairs on a slip operator S (P, 3, m): Δg_T = S Δq.
-
-    Returns the residual Sᵀt (P, m), the tangent Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗∂p/∂q (P, m, M) over
-    all M dofs of the pair's layout (``dp_dq`` (P, M); None without ``jacobian``), the traction and
-    the slipping flags (pairs at the cap with a positive normal force).
-    """
-    slip = np.einsum("pij,pj->pi", S, dq)
-    k_t = tangential_stiffness(mu, p_old, g_lim)
-    ret = coulomb_return(t_old, slip, n_old, p, mu, k_t)
-    f = np.einsum("pij,pi->pj", S, ret.traction)
-    K = None
-    if jacobian:
-        St = S.transpose(0, 2, 1)
-        K = np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq)
-        K[:, :, : S.shape[2]] += St @ ret.d_slip @ S
-    return f, K, ret.traction, ret.slipping & (p > 0)
-
-
-def tangential_part(t, n):
-    """The traction t (P, 3) projected on the plane normal to n: the history carried to a step."""
-    return t - np.einsum("pi,pi->p", t, n)[:, None] * n
-
-
-class ContactGroup:
-    """Contact pairs of one kind sharing a stencil layout; a ``PairTerms`` for ``NewtonSolver``.
+class ContactGroup(PairGroup):
+    """Small-sliding pairs of one kind sharing a stencil layout; a ``PairTerms`` for ``NewtonSolver``.
 
     Args:
         stencils: (P, k) local dof blocks, ordered as ``stencil_nodes(normal, line)``.
         initial_positions: (P, k, 3) positions of the stencil nodes at t = 0, m.
         line: line pairs (projected normal) rather than crossings.
-        radius_a, radius_b: wire radii (P,), m; normal0: (P, 3) initial normals a → b;
-        stiffness: K_N per pair (P,), N/m; mu: Coulomb coefficients (P,); g_lim: m.
+        radius_a, radius_b: wire radii (P,), m; normal0: (P, 3) initial normals a → b.
+        normal_law: the pairs' normal law; friction_law: their friction law (None: frictionless).
         normal: the normal ("frozen", "neighbour", "director").
         tangent0: (P, 2, 3) initial unit tangents at a and b (``director`` only).
         index: (P,) pair ids in the geometry's pair list, for reporting.
@@ -143,14 +117,13 @@ class ContactGroup:
         radius_a,
         radius_b,
         normal0,
-        stiffness,
-        mu,
-        g_lim: float,
+        normal_law: NormalLaw,
+        friction_law: FrictionLaw | None,
         normal: str,
         tangent0=None,
         index=None,
     ):
-        self.stencils = np.ascontiguousarray(stencils, dtype=np.int32)
+        super().__init__(stencils, normal_law, friction_law, normal0, index)
         n_pairs, k = self.stencils.shape
         if k != len(stencil_nodes(normal, line)):
             raise ValueError(
@@ -166,12 +139,8 @@ class ContactGroup:
         self.normal_kind = normal
         self.r_a = np.asarray(radius_a, dtype=float)
         self.r_b = np.asarray(radius_b, dtype=float)
-        self.k_n = np.asarray(stiffness, dtype=float)
-        self.mu = np.asarray(mu, dtype=float)
-        self.g_lim = g_lim
-        self.index = np.arange(n_pairs) if index is None else np.asarray(index)
-        n0 = np.asarray(normal0, dtype=float)
-        self.data: dict = {"g0": np.zeros(n_pairs), "n0": n0}
+        n0 = self._n_old
+        self.data: dict = {"g0": np.zeros(n_pairs), "n0": n0.copy()}
         X = self.X
         if not line and normal in ("neighbour", "director"):
             if normal == "neighbour":
@@ -186,44 +155,21 @@ class ContactGroup:
         # g0: the initial value, so that g ≡ 0 at t = 0
         zero = np.zeros_like(X)
         self.data["g0"] = gap_derivatives(normal, line, X, zero, self.data).gap.copy()
-        # friction history
-        self._q_old = np.zeros((n_pairs, 12))
-        self._t_old = np.zeros((n_pairs, 3))
-        self._n_old = n0.copy()
-        self._p_old = np.zeros(n_pairs)
-        self._last: tuple | None = None
+        self._q_old = np.zeros((n_pairs, 12))  # (u_a, θ_a, u_b, θ_b) at the last converged step
         self._S: Array | None = None  # slip operator of the current step
-        self.state = ContactState(
-            np.zeros(n_pairs),
-            np.zeros(n_pairs),
-            np.zeros((n_pairs, 3)),
-            n0.copy(),
-            np.zeros(n_pairs, dtype=bool),
-        )
-
-    def __len__(self) -> int:
-        return len(self.stencils)
-
-    @property
-    def friction(self) -> bool:
-        return bool(np.any(self.mu > 0))
 
     def slip_operator(self) -> Array:
         """S (P, 3, 12): Δg_T = S Δ(u_a, θ_a, u_b, θ_b), with the normal frozen over the step."""
         if self._S is None:
-            self._S = self._build_slip_operator()
+            n = self._n_old
+            P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
+            N = skew(n)
+            self._S = np.concatenate(
+                [-P_n, self.r_a[:, None, None] * N, P_n, self.r_b[:, None, None] * N], axis=2
+            )
         return self._S
 
-    def _build_slip_operator(self) -> Array:
-        n = self._n_old
-        P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
-        N = skew(n)
-        return np.concatenate(
-            [-P_n, self.r_a[:, None, None] * N, P_n, self.r_b[:, None, None] * N], axis=2
-        )
-
-    def evaluate(self, w: Array, jacobian: bool = True):
-        W = w[self.stencils]  # (P, k, 6)
+    def _kinematics(self, W: Array, jacobian: bool) -> PairKinematics:
         x = self.X + W[..., :3]
         gd = gap_derivatives(
             self.normal_kind,
@@ -233,49 +179,17 @@ class ContactGroup:
             self.data,
             hessian_where=(lambda g: g <= 0.0) if jacobian else None,
         )
-        p, dp_dg = normal_force(gd.gap, self.k_n)
-        G = gd.gradient[:, self.dofs]
-        f = -p[:, None] * G
-        K = None
-        if jacobian:
-            K = G[:, :, None] * G[:, None, :]
-            K *= -dp_dg[:, None, None]
-            gd.add_hessian(K, -p, self.dofs)
-        traction = np.zeros((len(p), 3))
-        slipping = np.zeros(len(p), dtype=bool)
-        if self.friction:
-            dq = W[:, :2].reshape(-1, 12) - self._q_old
-            f_t, K_t, traction, slipping = friction_terms(
-                self.slip_operator(), dq, p, dp_dg[:, None] * G, self.mu, self._p_old,
-                self._t_old, self._n_old, self.g_lim, jacobian,
-            )  # fmt: skip
-            f[:, :12] += f_t
-            if jacobian:
-                K[:, :12, :] += K_t
-        self.state = ContactState(gd.gap, p, traction, gd.normal, slipping)
-        self._last = W[:, :2].reshape(-1, 12).copy()
-        return f, K
+        return PairKinematics(
+            gd.gap,
+            gd.normal,
+            gd.gradient[:, self.dofs],
+            lambda K, scale: gd.add_hessian(K, scale, self.dofs),
+            lambda: (self.slip_operator(), W[:, :2].reshape(-1, 12) - self._q_old),
+        )
 
-    def commit(self) -> None:
-        """Accept the last evaluated state (the converged one) as the friction history."""
-        if self._last is None:
-            return
-        n = self.state.normal
-        t = self.state.traction
-        self._t_old = tangential_part(t, n)  # onto the new tangent plane
-        self._n_old = n.copy()
-        self._p_old = self.state.force.copy()
-        self._q_old = self._last.copy()
+    def _commit_kinematics(self, W: Array) -> None:
+        self._q_old = W[:, :2].reshape(-1, 12).copy()
         self._S = None
-
-    def rollback(self) -> None:
-        """Forget the current step (history is only changed by ``commit``)."""
-        self._last = None
-
-    @property
-    def committed_force(self) -> Array:
-        """Normal forces (N) at the last committed step."""
-        return self._p_old
 
 
 def _neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
@@ -316,11 +230,8 @@ def contact_groups(
                 "contact pairs whose nodes are not all on this process: strand's contact runs "
                 "serially for now (pair ownership with a slab partitioner is the way to MPI)"
             )
-        stiffness = (
-            settings.k_line * pairs.tributary[sel] if line else np.full(len(sel), settings.k_point)
-        )
-        mu = pairs.friction[sel] if settings.friction else np.zeros(len(sel))
         tangent0 = np.stack([_initial_tangents(geometry, a), _initial_tangents(geometry, b)], 1)
+        normal_law, friction_law = pair_laws(geometry, sel, settings, tangent0)
         groups.append(
             ContactGroup(
                 input_to_block[points],
@@ -329,12 +240,42 @@ def contact_groups(
                 pairs.radius_a[sel],
                 pairs.radius_b[sel],
                 pairs.normal[sel],
-                stiffness,
-                mu,
-                settings.g_lim,
+                normal_law,
+                friction_law,
                 settings.normal,
                 tangent0,
                 index=sel,
             )
         )
     return groups
+
+
+def pair_laws(
+    geometry: StrandGeometry, sel, settings: ContactSettings, tangents
+) -> tuple[NormalLaw, FrictionLaw | None]:
+    """The normal and friction laws of the geometry's pairs ``sel`` (all of one kind).
+
+    ``tangents`` (P, 2, 3): the initial unit tangents of the wires at a and b (their crossing
+    angle sizes a Hertz contact).
+    """
+    pairs = geometry.pairs
+    line = bool(np.all(pairs.kind[sel] == LINE))
+    mu = pairs.friction[sel] if settings.friction else np.zeros(len(sel))
+    if settings.compliance == "penalty":
+        k = settings.k_line * pairs.tributary[sel] if line else np.full(len(sel), settings.k_point)
+        return PenaltyLaw(k), ElasticSlip(mu, settings.g_lim) if settings.friction else None
+    wires = [layer.wire for layer in geometry.cable.layers]
+    inner, outer = pairs.interface[sel], pairs.interface[sel] + 1
+    E_a, nu_a = (np.array([getattr(w, key) for w in wires])[inner] for key in ("E", "nu"))
+    E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
+    r_a, r_b = pairs.radius_a[sel], pairs.radius_b[sel]
+    if line:
+        law: NormalLaw = HertzLineLaw(
+            r_a, r_b, compliance(E_a, nu_a), compliance(E_b, nu_b), pairs.tributary[sel]
+        )
+    else:
+        cos_beta = np.abs(np.einsum("pi,pi->p", tangents[:, 0], tangents[:, 1]))
+        beta = np.arccos(np.clip(cos_beta, 0.0, 1.0))
+        law = HertzPointLaw(point_coefficient(r_a, r_b, beta, E_a, nu_a, E_b, nu_b))
+    friction = Mindlin(mu, mindlin_ratio(E_a, nu_a, E_b, nu_b)) if settings.friction else None
+    return law, friction

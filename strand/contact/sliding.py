@@ -16,8 +16,8 @@ first iterations and Newton diverges at 3 kN of tension). On Hermite curves the 
 gradient are continuous across nodes. Helices touch at nodes with the analytic tangents, so the
 closest points start exactly there.
 
-The same laws as the small-sliding element apply (penalty, Coulomb radial return with
-K_T = μP₀/g_lim), and the same slip measure: the relative motion of the two surface points
+The same laws as the small-sliding element apply (the law objects of ``strand.contact.laws``,
+through the shared ``PairGroup``), and the same slip measure: the relative motion of the two surface points
 currently in contact since the last converged step (translations and rotations interpolated
 linearly at the closest points, lever arms r n), in the plane normal to n frozen over the step.
 
@@ -37,9 +37,10 @@ import numpy as np
 import numpy.typing as npt
 
 from ..geometry import LINE, StrandGeometry
-from .element import ContactState, friction_terms, tangential_part
+from .element import ContactSettings, pair_laws
+from .group import PairGroup, PairKinematics
 from .kinematics import _cross, _dot, _rotate, _rotation_coefficients, _tangent_map_transpose, skew
-from .laws import normal_force
+from .laws import FrictionLaw, NormalLaw
 
 __all__ = ["SlidingGroup", "sliding_groups", "hermite_point", "SlidingWindowError"]
 
@@ -171,7 +172,7 @@ def _line_kernel(y, data, xi, eta, free, iterations, tol=0.0):
     return dist, grad, n, xi, eta
 
 
-class SlidingGroup:
+class SlidingGroup(PairGroup):
     """Large-sliding pairs of one kind; a ``PairTerms`` for ``NewtonSolver``.
 
     Args:
@@ -180,8 +181,8 @@ class SlidingGroup:
         initial_positions: (P, na + nb, 3), m.
         na: nodes of wire a per window; line: line pairs (node b against the core).
         start: (P, 2) the segment of each window holding the initial pair (a, b).
-        stiffness, mu: per pair; g_lim: m; radius_a, radius_b: wire radii (lever arms of the
-            surface points), m.
+        normal_law, friction_law: the pairs' laws (friction None: frictionless); radius_a,
+            radius_b: wire radii (lever arms of the surface points), m.
         start_parameters: (P, 2) the initial contact point's parameter on those segments
             (default 0: the segments' first nodes).
         tangents: (P, na + nb, 3) initial unit tangents of the centrelines at the window nodes
@@ -200,19 +201,17 @@ class SlidingGroup:
     #: initial penetration (m) that keeps touching pairs closed despite round-off
     TOUCH = 1e-15
 
-    def __init__(self, stencils, initial_positions, na: int, line: bool, start, stiffness, mu,
-                 g_lim: float, index=None, wire_end=None, radius_a=0.0, radius_b=0.0,
-                 start_parameters=None, *, tangents):  # fmt: skip
-        self.stencils = np.ascontiguousarray(stencils, dtype=np.int32)
-        n_pairs, k = self.stencils.shape
+    def __init__(self, stencils, initial_positions, na: int, line: bool, start,
+                 normal_law: NormalLaw, friction_law: FrictionLaw | None, index=None,
+                 wire_end=None, radius_a=0.0, radius_b=0.0, start_parameters=None, *,
+                 tangents):  # fmt: skip
+        n_pairs, k = np.shape(stencils)
+        # the initial normal is known once the closest points are: set below
+        super().__init__(stencils, normal_law, friction_law, np.zeros((n_pairs, 3)), index)
         self.X = np.asarray(initial_positions, dtype=float)
         self.na, self.nb, self.line = na, k - na, line
         self.r_a = np.broadcast_to(np.asarray(radius_a, float), (n_pairs,))
         self.r_b = np.broadcast_to(np.asarray(radius_b, float), (n_pairs,))
-        self.k_n = np.asarray(stiffness, float)
-        self.mu = np.asarray(mu, float)
-        self.g_lim = g_lim
-        self.index = np.arange(n_pairs) if index is None else np.asarray(index)
         self.wire_end = (
             np.zeros((n_pairs, 4), dtype=bool) if wire_end is None else np.asarray(wire_end)
         )
@@ -227,22 +226,16 @@ class SlidingGroup:
             else np.asarray(start_parameters, float).copy()
         )  # fmt: skip
         self.g0 = np.zeros(n_pairs)  # so that the initial distances come out whole
-        distance, _, n_initial, _ = self._kinematics(self.X, np.zeros_like(self.X), hessian=False)
+        distance, _, n_initial, _ = self._kinematics_of(
+            self.X, np.zeros_like(self.X), hessian=False
+        )
         # pairs touching at t = 0 start closed: a femtometre below their initial distance, more
         # than the round-off of the iterated projection (~1e-19 m), so g = 0 reads as g ≤ 0
         self.g0 = distance + self.TOUCH
-        self._t_old = np.zeros((n_pairs, 3))
-        self._p_old = np.zeros(n_pairs)
         self._n_old = n_initial.copy()
+        self.state.normal = n_initial.copy()
         self._w_old = np.zeros((n_pairs, k, 6))  # window unknowns at the last converged step
         self._committed = (self.segment.copy(), self.parameter.copy())
-        self.state = ContactState(
-            np.zeros(n_pairs), np.zeros(n_pairs), np.zeros((n_pairs, 3)), self._n_old.copy(),
-            np.zeros(n_pairs, dtype=bool),
-        )  # fmt: skip
-
-    def __len__(self) -> int:
-        return len(self.stencils)
 
     # -- closest points ---------------------------------------------------------------------------
     def _active(self, x, rot, rows=None):
@@ -305,7 +298,7 @@ class SlidingGroup:
             if len(rows) == 0:
                 break
 
-    def _kinematics(self, x: Array, rot: Array, hessian: bool):
+    def _kinematics_of(self, x: Array, rot: Array, hessian: bool):
         self._search(x, rot)
         nodes, y, data = self._active(x, rot)
         self._nodes = nodes
@@ -356,30 +349,24 @@ class SlidingGroup:
         return g, grad, n, H
 
     # -- PairTerms ----------------------------------------------------------------------------------
-    def evaluate(self, w: Array, jacobian: bool = True):
+    def _kinematics(self, W: Array, jacobian: bool) -> PairKinematics:
         n_pairs, k = self.stencils.shape
-        W = w[self.stencils]  # (P, k, 6)
         x = self.X + W[..., :3]
-        g, grad, n, H = self._kinematics(x, W[..., 3:], jacobian)
-        p, dp_dg = normal_force(g, self.k_n)
+        g, grad, n, H = self._kinematics_of(x, W[..., 3:], jacobian)
         # scatter the active nodes' unknowns (u, θ per node; u only for a line pair's node b) into
         # the window layout (6k: u, θ per node)
         cols = (6 * self._nodes[:, :, None] + np.arange(6)).reshape(n_pairs, -1)[:, : grad.shape[1]]
         rows = np.arange(n_pairs)[:, None]
         G = np.zeros((n_pairs, 6 * k))
         G[rows, cols] = grad
-        f = -p[:, None] * G
-        K = None
-        if jacobian:
-            K = G[:, :, None] * G[:, None, :]
-            K *= -dp_dg[:, None, None]
+
+        def add_hessian(K, scale):
             sel, h = H
             if len(sel):
                 c = cols[sel]
-                K[sel[:, None, None], c[:, :, None], c[:, None, :]] -= p[sel, None, None] * h
-        traction = np.zeros((n_pairs, 3))
-        slipping = np.zeros(n_pairs, dtype=bool)
-        if np.any(self.mu > 0):
+                K[sel[:, None, None], c[:, :, None], c[:, None, :]] += scale[sel, None, None] * h
+
+        def slip():
             # slip of the surface points in contact since the last converged step, as in the
             # small-sliding element: P_n[Δu_b − r_b Δθ_b×n − Δu_a − r_a Δθ_a×n], interpolated
             # with the current closest-point weights; n and the plane frozen over the step
@@ -394,17 +381,9 @@ class SlidingGroup:
                 weight = self._shape[:, j]
                 S[rows[:, 0], :, node, 0:3] = (side[j] * weight)[:, None, None] * P_n
                 S[rows[:, 0], :, node, 3:6] = (weight * radius[:, j])[:, None, None] * lever
-            S = S.reshape(n_pairs, 3, 6 * k)
-            f_t, K_t, traction, slipping = friction_terms(
-                S, (W - self._w_old).reshape(n_pairs, -1), p, dp_dg[:, None] * G, self.mu,
-                self._p_old, self._t_old, n0, self.g_lim, jacobian,
-            )  # fmt: skip
-            f += f_t
-            if jacobian:
-                K += K_t
-        self.state = ContactState(g, p, traction, n, slipping)
-        self._last_w = W
-        return f, K
+            return S.reshape(n_pairs, 3, 6 * k), (W - self._w_old).reshape(n_pairs, -1)
+
+        return PairKinematics(g, n, G, add_hessian, slip)
 
     def commit(self) -> None:
         if np.any(self._outside):
@@ -413,19 +392,14 @@ class SlidingGroup:
                 f"contact pairs {bad.tolist()} press at the end of the segments reserved for "
                 "them: they slid further than the sliding reach; increase contact reach"
             )
-        n = self.state.normal
-        self._t_old = tangential_part(self.state.traction, n)
-        self._n_old = n.copy()
-        self._p_old = self.state.force.copy()
-        self._w_old = self._last_w.copy()
+        super().commit()
+
+    def _commit_kinematics(self, W: Array) -> None:
+        self._w_old = W.copy()
         self._committed = (self.segment.copy(), self.parameter.copy())
 
-    def rollback(self) -> None:
+    def _rollback_kinematics(self) -> None:
         self.segment, self.parameter = (a.copy() for a in self._committed)
-
-    @property
-    def committed_force(self) -> Array:
-        return self._p_old
 
 
 def _windows(geometry: StrandGeometry, nodes: npt.NDArray[np.intp], reach: float):
@@ -446,19 +420,15 @@ def _windows(geometry: StrandGeometry, nodes: npt.NDArray[np.intp], reach: float
 def sliding_groups(
     geometry: StrandGeometry,
     input_to_block: npt.NDArray[np.int32],
-    k_point: float,
-    k_line: float,
-    g_lim: float,
-    friction: bool = True,
-    reach: float = 1e-3,
+    settings: ContactSettings,
 ) -> list[SlidingGroup]:
-    """Large-sliding versions of the geometry's pairs. Each pair's window holds the segments of its
-    wires within ``reach`` (m) of its initial nodes; pairs with windows of equal sizes share a
-    group."""
+    """Large-sliding versions of the geometry's pairs, with the laws of ``settings``. Each pair's
+    window holds the segments of its wires within ``settings.reach`` (m) of its initial nodes;
+    pairs with windows of equal sizes share a group."""
     pairs = geometry.pairs
     tangents = geometry.tangents()
-    a_first, a_last, a_ends = _windows(geometry, pairs.a, reach)
-    b_first, b_last, b_ends = _windows(geometry, pairs.b, reach)
+    a_first, a_last, a_ends = _windows(geometry, pairs.a, settings.reach)
+    b_first, b_last, b_ends = _windows(geometry, pairs.b, settings.reach)
     # a line pair's node b is a point against the core: its window is the node itself
     is_line = pairs.kind == LINE
     b_first, b_last = np.where(is_line, pairs.b, b_first), np.where(is_line, pairs.b, b_last)
@@ -479,11 +449,12 @@ def sliding_groups(
             start_a = np.minimum(a_pos, na - 2)
             start_b = np.zeros(len(sel), dtype=np.intp) if line else np.minimum(b_pos, nb - 2)
             start_parameters = np.column_stack([a_pos - start_a, b_pos - start_b]).astype(float)
-            stiffness = k_line * pairs.tributary[sel] if line else np.full(len(sel), k_point)
-            mu = pairs.friction[sel] if friction else np.zeros(len(sel))
+            pair_tangents = np.stack([tangents[pairs.a[sel]], tangents[pairs.b[sel]]], axis=1)
+            normal_law, friction_law = pair_laws(geometry, sel, settings, pair_tangents)
             groups.append(
                 SlidingGroup(input_to_block[nodes], geometry.points[nodes], int(na), line,
-                             np.column_stack([start_a, start_b]), stiffness, mu, g_lim, index=sel,
+                             np.column_stack([start_a, start_b]), normal_law, friction_law,
+                             index=sel,
                              wire_end=np.column_stack([a_ends[sel], b_ends[sel]]),
                              radius_a=pairs.radius_a[sel], radius_b=pairs.radius_b[sel],
                              start_parameters=start_parameters, tangents=tangents[nodes])

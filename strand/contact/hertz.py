@@ -1,0 +1,61 @@
+"""Contact mechanics of touching wires (Hertz, Mindlin), for contact compliances from first principles.
+
+Physics only (numpy, arrays over pairs). Units: m, N, Pa, rad. Johnson, *Contact Mechanics* (1985),
+§4.2 (Hertz, elliptical contact), §5.6 (line contact), §7.2 (Mindlin).
+
+Crossed cylinders of radii R₁, R₂ whose axes cross at β touch over an ellipse. The gap between them
+is Ax² + By² with A + B = ½(1/R₁ + 1/R₂) and B − A = ½(1/R₁² + 1/R₂² + 2cos2β/(R₁R₂))^{1/2}. The
+Hertz load–approach relation P = c δ^{3/2} uses the Hamrock–Brewe (1983) fits of the elliptic
+integrals, with R_x = 1/(2A) ≥ R_y = 1/(2B), α_r = R_x/R_y, 1/R = 1/R_x + 1/R_y:
+
+    k = α_r^{2/π},  ℰ = 1 + (π/2 − 1)/α_r,  ℱ = π/2 + (π/2 − 1) ln α_r,
+    δ = ℱ [9/(2ℰR) (P/(π k E′))²]^{1/3},  E′ = 2E*,  1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂,
+
+so c = π k E′ (2ℰR/9)^{1/2} / ℱ^{3/2} (exact for a sphere on a flat; a few % otherwise). Mindlin's
+initial tangential stiffness of a contact area of radius a is k_T = 8a/[(2 − ν₁)/G₁ + (2 − ν₂)/G₂]
+against the normal k_N = dP/dδ = 2aE*: their ratio depends on the materials alone.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["crossed_cylinders", "point_coefficient", "compliance", "mindlin_ratio"]
+
+Array = npt.NDArray[np.float64]
+
+
+def compliance(E, nu) -> Array:
+    """C = (1 − ν²)/E (1/Pa), one body's share of 1/E*."""
+    return (1 - np.asarray(nu, float) ** 2) / np.asarray(E, float)
+
+
+def crossed_cylinders(r1, r2, beta) -> tuple[Array, Array]:
+    """Principal relative radii (R_x, R_y), R_x ≥ R_y, of cylinders r1, r2 (m) crossing at beta (rad)."""
+    r1, r2, beta = (np.asarray(v, float) for v in (r1, r2, beta))
+    s = 0.5 * (1 / r1 + 1 / r2)
+    d = 0.5 * np.sqrt(1 / r1**2 + 1 / r2**2 + 2 * np.cos(2 * beta) / (r1 * r2))
+    a, b = (s - d) / 2, (s + d) / 2
+    return 1 / (2 * a), 1 / (2 * b)
+
+
+def point_coefficient(r1, r2, beta, E1, nu1, E2, nu2) -> Array:
+    """c (N/m^{3/2}) of P = c δ^{3/2} for crossed cylinders (Hertz, Hamrock–Brewe fits)."""
+    rx, ry = crossed_cylinders(r1, r2, beta)
+    alpha = rx / ry
+    k = alpha ** (2 / np.pi)
+    ell_e = 1 + (np.pi / 2 - 1) / alpha
+    ell_f = np.pi / 2 + (np.pi / 2 - 1) * np.log(alpha)
+    r = 1 / (1 / rx + 1 / ry)
+    e_prime = 2 / (compliance(E1, nu1) + compliance(E2, nu2))
+    return np.pi * k * e_prime * np.sqrt(2 * ell_e * r / 9) / ell_f**1.5
+
+
+def mindlin_ratio(E1, nu1, E2, nu2) -> Array:
+    """k_T/k_N = 4[(1 − ν₁²)/E₁ + (1 − ν₂²)/E₂]/[(2 − ν₁)/G₁ + (2 − ν₂)/G₂], G = E/(2(1 + ν)).
+
+    2(1 − ν)/(2 − ν) for like materials (0.82 at ν = 0.3)."""
+    E1, nu1, E2, nu2 = (np.asarray(v, float) for v in (E1, nu1, E2, nu2))
+    g1, g2 = E1 / (2 * (1 + nu1)), E2 / (2 * (1 + nu2))
+    return 4 * (compliance(E1, nu1) + compliance(E2, nu2)) / ((2 - nu1) / g1 + (2 - nu2) / g2)

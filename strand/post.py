@@ -209,3 +209,19 @@ def uniform_bending_report(cable: Cable, tension: float, folder) -> dict:
     report["slip_onset"] = onset
     report["slip_onset_law"] = {r: law.slip_onset for r, law in laws.items()}
     return report
+
+
+def saddle_beam_reference(cable: Cable, length: float, tension: float, loads) -> dict[str, Array]:
+    """Midspan deflections (m) of the clamped–clamped tensioned beam (``analytical.TensionedBeam``)
+    along the lateral ``loads`` (N, a history that starts from the unloaded beam before its first
+    value), with the stick–slip law of each friction rule (Masing cycles): the analytical
+    prediction the saddle test sits beside."""
+    from .analytical import StickSlipLaw, TensionedBeam
+
+    path = np.r_[0.0, np.asarray(loads, dtype=float)]
+    return {
+        rule: TensionedBeam(length, tension, StickSlipLaw(cable, tension, rule).curvature).cycle(
+            path
+        )[1:]
+        for rule in ("cumulative", "own_tension")
+    }

@@ -30,6 +30,7 @@ from .post import (  # isort: skip
     bending_stiffness_bounds,
     cell_results,
     fibre_model,
+    saddle_beam_reference,
 )
 from .problem import StrandProblem  # isort: skip
 from .programme import LoadProgramme, Stage, cycle_stages, run_programme  # isort: skip
@@ -285,6 +286,7 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
                 "back at P = 0: deflection "
                 + ", ".join(f"{1e3 * s.state.deflection:+.2f} mm" for s in zero)
             )
+        lines += saddle_beam_lines(case, result)
     ei_min, ei_max = bending_stiffness_bounds(case.cable)
     lines.append(f"bending stiffness bounds: EI_min {ei_min:.1f} N m², EI_max {ei_max:.0f} N m²")
     if result.failure:
@@ -321,5 +323,23 @@ def bending_lines(case: Case, result: RunResult) -> list[str]:
         lines.append(
             f"  layer {i}: model {k:.4f}   κ_b cumulative {law['cumulative'][i - 1]:.4f}, "
             f"own tension {law['own_tension'][i - 1]:.4f}"
+        )
+    return lines
+
+
+def saddle_beam_lines(case: Case, result: RunResult) -> list[str]:
+    """The saddle test's deflections beside the tensioned beam with the stick–slip law."""
+    steps = result.cycle_steps
+    loads = np.array([s.state.lateral for s in steps])
+    ref = saddle_beam_reference(case.cable, case.mesh.length, case.load.tension, loads)
+    peak = int(np.argmax(np.abs(loads)))
+    lines = ["tensioned beam with the stick–slip law (clamped–clamped, Masing), deflection (mm):",
+             "  P (kN)   model   law: cumulative  own tension"]  # fmt: skip
+    shown = {peak} | {j for j, s in enumerate(steps) if s in result.unloaded_steps}
+    shown |= {int(np.argmin(np.abs(loads[: peak + 1] - f * loads[peak]))) for f in (0.25, 0.5)}
+    for j in sorted(shown):
+        lines.append(
+            f"  {loads[j] / 1e3:6.2f}  {1e3 * steps[j].state.deflection:6.2f}  "
+            f"{1e3 * ref['cumulative'][j]:16.2f}  {1e3 * ref['own_tension'][j]:11.2f}"
         )
     return lines

@@ -23,7 +23,11 @@ from strand.cable import cardinal  # isort: skip
 from strand.case import CaseError, case_from_dict  # isort: skip
 from strand.contact.element import ContactSettings  # isort: skip
 from strand.geometry import build_geometry  # isort: skip
-from strand.post import bending_stiffness_bounds, cell_results  # isort: skip
+from strand.post import (  # isort: skip
+    bending_stiffness_bounds,
+    cell_results,
+    saddle_beam_reference,
+)
 from strand.problem import StrandProblem  # isort: skip
 from strand.setups.bending import UniformBendingTest  # isort: skip
 from strand.solver import LoadStepper, NewtonOptions  # isort: skip
@@ -150,6 +154,17 @@ def test_tensioned_beam_matches_its_closed_form_and_the_reference_deflections():
         beam = TensionedBeam(1.0, 40e3, StickSlipLaw(cardinal(), 40e3, rule).curvature)
         got = [1e3 * beam.deflection(P) for P in (1000.0, 2000.0, 4300.0)]
         assert np.allclose(got, expected, atol=0.1), (rule, got)
+
+
+def test_saddle_beam_reference_starts_from_the_unloaded_beam():
+    """The saddle run's analytical companion: a load history that does not start at 0 is taken
+    from the unloaded beam (first value on the virgin curve), one deflection per load."""
+    loads = [1000.0, 2000.0, 0.0]
+    ref = saddle_beam_reference(cardinal(), 1.0, 40e3, loads)
+    beam = TensionedBeam(1.0, 40e3, StickSlipLaw(cardinal(), 40e3, "own_tension").curvature)
+    assert len(ref["own_tension"]) == 3
+    assert ref["own_tension"][:2] == pytest.approx([beam.deflection(P) for P in loads[:2]], 1e-3)
+    assert ref["own_tension"][2] > 0  # Masing: a residual deflection when unloaded
 
 
 def test_masing_cycles_close_and_remember():

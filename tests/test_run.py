@@ -127,6 +127,7 @@ def test_run_writes_every_output_and_balances_the_section(tmp_path, capsys):
     assert np.all(mk[np.argmax(mk[:, 1]), 2:4] > 0)  # positive load: positive κ and M
     summary = (out / "summary.txt").read_text()
     assert "fibre model" in summary and "wire force layer 1" in summary
+    assert "tensioned beam with the stick–slip law" in summary
 
 
 def test_tension_matches_the_fibre_model_when_contacts_are_stiff():

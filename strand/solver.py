@@ -313,6 +313,10 @@ class NewtonSolver:
         self.x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(self.x, self.w)
         reason = self.snes.getConvergedReason()
+        if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE:
+            # a failed factorisation leaves the PC failed: without a reset every later solve
+            # (after a step cut, from a good state) would fail at once
+            self.snes.getKSP().reset()
         converged = reason > 0 and bool(np.all(np.isfinite(self.w.x.array)))
         dt = time.perf_counter() - t0
         self.timings["solve"] += dt

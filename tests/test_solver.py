@@ -157,3 +157,29 @@ def test_secant_predictor_saves_iterations_and_reaches_the_same_state():
         results[extrapolate] = (sum(r.iterations for r in stepper.history), case.tip_u.copy())
     assert results[True][0] < results[False][0]
     assert np.allclose(results[True][1], results[False][1], rtol=1e-8, atol=1e-12)
+
+
+def test_a_failed_factorisation_does_not_poison_the_next_solve():
+    """A tangent with a NaN makes MUMPS fail (DIVERGED_LINEAR_SOLVE); once the state is rolled
+    back, the next solve from a good state must factor afresh and converge (PETSc keeps a failed
+    PC failed: without a reset, every later attempt failed at iteration 0)."""
+    mesh, V, roots, tips = two_bars()
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
+    bc = fem.dirichletbc(np.zeros(6), roots, V)
+    spring = AxialSpring([tips], 3.0e8)
+    evaluate = spring.evaluate
+
+    def poisoned(w, jacobian):
+        f, K = evaluate(w, jacobian)
+        return f, K * np.nan
+
+    load = NodalLoad([tips[0]], [[5e3, 0, 0, 0, 0, 0]], factor=1.0)
+    solver = NewtonSolver(beam.residual(), w, [bc], terms=[spring, load])
+    spring.evaluate = poisoned
+    failed = solver.solve()
+    assert not failed.converged and failed.reason == "DIVERGED_LINEAR_SOLVE"
+    solver.rollback()
+    spring.evaluate = evaluate
+    result = solver.solve()
+    assert result.converged and result.iterations <= 2

@@ -18,8 +18,10 @@ import resource
 import sys
 import time
 
+from strand.analytical import StickSlipLaw
+from strand.cable import cardinal
 from strand.case import case_from_dict
-from strand.post import uniform_bending_report
+from strand.post import bending_stiffness_bounds, uniform_bending_report
 from strand.run import run_case
 
 #: variant: (output folder, [contact] settings)
@@ -57,14 +59,18 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
         moments = {k: (m, law) for k, m, law, _ in report.get("table", [])}
         rows.append((name, report, moments, seconds, result))
         print(f"  done: {name} ({seconds:.0f} s)", flush=True)
+    ei_min, ei_max = bending_stiffness_bounds(cardinal())
     print(f"\nCardinal, L = {length} m, T = 40 kN, uniform bending to {kappa_max} 1/m "
-          f"(EI_max {rows[0][1]['ei_max']:.0f}, EI_min {rows[0][1]['ei_min']:.1f} N m²)")  # fmt: skip
+          f"(EI_max {ei_max:.0f}, EI_min {ei_min:.1f} N m²)")  # fmt: skip
     head = f"{'variant':24s} {'M/κ₀ / EI_max':>13s}"
     head += "".join(f" {'M(' + str(k) + ') N m':>13s}" for k in KAPPAS)
     head += f" {'slip onset 0|1 1|2 2|3 3|4 (1/m)':>34s} {'time s':>7s} {'its':>5s}"
     print(head)
     law_row = f"{'stick–slip law':24s} {'':>13s}"
     for name, report, moments, seconds, result in rows:
+        if not report:
+            print(f"{name:24s} FAILED before the first bending step: {result.failure}")
+            continue
         line = f"{name:24s} {report['initial_slope'] / report['ei_max']:13.3f}"
         line += "".join(
             f" {moments[k][0]:13.2f}" if k in moments else f" {'-':>13s}" for k in KAPPAS
@@ -74,11 +80,9 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
         if result.failure:
             line += f"  FAILED: {result.failure}"
         print(line)
-    moments = rows[0][2]
-    law_row += "".join(
-        f" {moments[k][1]:13.2f}" if k in moments else f" {'-':>13s}" for k in KAPPAS
-    )
-    law_row += f" {' '.join(f'{v:6.3f}' for v in rows[0][1]['slip_onset_law']['cumulative']):>34s}"
+    law = StickSlipLaw(cardinal(), 40e3, "cumulative")
+    law_row += "".join(f" {float(law.moment(k)):13.2f}" for k in KAPPAS)
+    law_row += f" {' '.join(f'{v:6.3f}' for v in law.slip_onset):>34s}"
     print(law_row)
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"peak memory (MiB): {peak:.0f}")

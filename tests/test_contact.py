@@ -474,6 +474,10 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(model="huge")
     with pytest.raises(CableError, match="reach = 0"):
         ContactSettings(model="large", reach=0)
+    with pytest.raises(CableError, match="g_lim apply to compliance"):
+        ContactSettings(compliance="hertz", g_lim=1e-6)
+    with pytest.raises(CableError, match="compliance 'stiff' is unknown"):
+        ContactSettings(compliance="stiff")
     from strand.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
 
     with pytest.raises(CaseError, match=r"unknown setting\(s\) in \[contact\]: \['kn'\]"):

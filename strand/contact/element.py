@@ -10,7 +10,7 @@ the groups of a strand and their laws from ``ContactSettings``. Units: m, N, rad
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 import numpy.typing as npt
@@ -93,6 +93,14 @@ class ContactSettings:
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):
                 raise CableError(f"contact {name} = {value!r}: must be a positive number")
+        if self.compliance != "penalty":
+            defaults = {f.name: f.default for f in fields(self)}
+            given = [n for n in ("k_point", "k_line", "g_lim") if getattr(self, n) != defaults[n]]
+            if given:
+                raise CableError(
+                    f'contact {", ".join(given)} apply to compliance = "penalty" only (the '
+                    f"{self.compliance} compliance follows from the wires); set one or the other"
+                )
 
 
 class ContactGroup(PairGroup):

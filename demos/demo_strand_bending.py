@@ -12,7 +12,9 @@
 # This demo runs a short version of strand's main job: a 0.4 m piece of the Cardinal ACSR
 # conductor (61 wires in five layers), pulled to 40 kN, then bent back and forth by a saddle load
 # at midspan. Every wire is a geometrically exact Reissner beam; wires touch at fixed node pairs
-# (small sliding) with a penalty normal force and Coulomb friction, the seed paper's element.
+# (small sliding), the seed paper's element, here with the contact compliance of contact mechanics:
+# a Hertz normal force (crossed cylinders, or cylinders side by side between the core and layer 1)
+# and Coulomb friction whose stick stiffness is Mindlin's.
 #
 # Units are SI (m, N, Pa, rad).
 
@@ -63,8 +65,9 @@ result = run_case(case, "results/demo_strand_bending")
 # ## Tension: the fibre model
 #
 # After tensioning, the wire forces agree with the classical fibre model (wires as helical bars
-# stretched by ε cos²α) to within about 5 %; the rest is the compliance of the penalty contacts,
-# which the fibre model takes as rigid.
+# stretched by ε cos²α) to within about 7 %. The fibre model takes the contacts as rigid; here the
+# aluminium crossings flatten by a few µm (Hertz), the outer layers settle inwards and shed a
+# little load to the steel core and layer 1, which carry more than the fibre model says.
 
 reference = fibre_model(case.cable, case.load.tension)
 t = result.tensioned
@@ -72,7 +75,9 @@ middle = np.abs(t.z - 0.2) < 0.1
 for layer, expected in enumerate(reference["wire_force"]):
     model = t.axial[middle & (t.layer == layer)].mean()
     print(f"layer {layer}: {model:7.1f} N (fibre model {expected:7.1f} N)")
-    assert abs(model / expected - 1) < 0.06
+    assert abs(model / expected - 1) < 0.08
+    if layer < 2:  # steel: more than with rigid contacts
+        assert model > expected
 
 # ## Bending: stick, slip and hysteresis
 #

@@ -11,10 +11,10 @@ paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +
 
     [contact]
     normal = "auto"           # auto (director with friction, frozen without) | neighbour | director | frozen
-    compliance = "penalty"    # penalty (k_point, k_line, g_lim) | hertz (Hertz normal, Mindlin stick)
-    k_point = 5e7             # N/m, penalty per crossing
-    k_line = 5e9              # N/m², core | layer-1 penalty per metre of wire
-    g_lim = 5e-6              # m, elastic slip at which friction reaches μP
+    compliance = "hertz"      # hertz (Hertz normal, Mindlin stick: from the wires) | penalty (seed paper)
+    k_point = 5e7             # N/m, penalty only: stiffness per crossing
+    k_line = 5e9              # N/m², penalty only: core | layer-1 stiffness per metre of wire
+    g_lim = 5e-6              # m, penalty only: elastic slip at which friction reaches μP
     friction = true           # Coulomb coefficients of the cable; false: frictionless
     model = "small"           # small sliding (pairs fixed at t = 0) | large (re-projected: the baseline)
     reach = 1e-3              # m, large sliding: sliding room reserved either side of each pair

@@ -169,11 +169,13 @@ class FieldSeries:
 
 
 class KeyStates:
-    """Keeps the cell results of the tensioned state (last step before the cycle) and of the
-    largest |cycle load| reached, with the nodal unknowns there (for summary and figures)."""
+    """Keeps the cell results and contact pair results of the tensioned state (last step before
+    the cycle), and the cell results of the largest |cycle load| reached, with the nodal unknowns
+    there (for summary and figures)."""
 
     def __init__(self):
         self.tensioned = None
+        self.tensioned_pairs = None
         self.peak = None
         self.peak_w = None
         self._peak_load = 0.0
@@ -181,6 +183,7 @@ class KeyStates:
     def record(self, ctx: StepContext) -> None:
         if not ctx.cycle:
             self.tensioned = ctx.cells
+            self.tensioned_pairs = ctx.problem.model.pair_results()
         elif abs(ctx.step.load) > abs(self._peak_load):
             self._peak_load = ctx.step.load
             self.peak = ctx.cells

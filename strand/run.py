@@ -23,7 +23,7 @@ import numpy as np
 import strand  # noqa: F401
 
 from .case import Case  # isort: skip
-from .geometry import build_geometry  # isort: skip
+from .geometry import LINE, build_geometry  # isort: skip
 from .post import (  # isort: skip
     CellEvaluator,
     CellResults,
@@ -58,6 +58,7 @@ class RunResult:
     folder: Path
     steps: list[RunStep] = field(default_factory=list)
     tensioned: CellResults | None = None  # after tension, before the cycle
+    tensioned_pairs: dict | None = None  # contact pair results there (``pair_results``)
     peak: CellResults | None = None  # at the largest |cycle load| reached
     peak_w: object | None = None  # nodal unknowns at that state
     failure: str = ""
@@ -232,6 +233,7 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         key_states.peak,
         key_states.peak_w,
     )
+    result.tensioned_pairs = key_states.tensioned_pairs
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=output_seconds)
     summary = summarize(case, result, problem)
@@ -271,6 +273,7 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
             lines.append(
                 f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
             )
+        lines.append(contact_force_line(problem.model.geometry, result.tensioned_pairs))
     peak = result.peak_step
     if case.load.kind == "bending":
         lines += bending_lines(case, result)
@@ -343,3 +346,23 @@ def saddle_beam_lines(case: Case, result: RunResult) -> list[str]:
             f"{1e3 * ref['cumulative'][j]:16.2f}  {1e3 * ref['own_tension'][j]:11.2f}"
         )
     return lines
+
+
+def contact_force_line(geometry, pairs: dict) -> str:
+    """Mean contact forces per interface over the middle half of the strand: line pairs per metre
+    of layer-1 wire (N/m), crossings per crossing (N)."""
+    p = geometry.pairs
+    z = geometry.points[p.a, 2]
+    middle = np.abs(z - geometry.length / 2) < geometry.length / 4
+    parts = []
+    for i in range(len(geometry.cable.layers) - 1):
+        sel = middle & (p.interface == i)
+        if not np.any(sel):
+            continue
+        line = p.kind[sel] == LINE
+        if np.all(line):
+            q = pairs["force"][sel].sum() / p.tributary[sel].sum()
+            parts.append(f"{i}|{i + 1} {q:.0f} N/m")
+        else:
+            parts.append(f"{i}|{i + 1} {pairs['force'][sel].mean():.1f} N")
+    return "  mean contact force, middle half: " + ", ".join(parts)

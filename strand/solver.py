@@ -231,7 +231,8 @@ class NewtonSolver:
         wn = wl.reshape(-1, 6)
         out = []
         for t, (idx, rows, mask) in zip(self.terms, self._term_masks(), strict=True):
-            f, K = t.evaluate(wn, True)
+            with np.errstate(all="ignore"):  # a wild iterate's inf/nan stops SNES, then a cut
+                f, K = t.evaluate(wn, True)
             f_rows = f[rows].copy()  # unmasked, for the reactions
             if len(rows):  # only the few stencils that touch a Dirichlet dof
                 f[rows] = np.where(mask, 0.0, f[rows])
@@ -263,6 +264,9 @@ class NewtonSolver:
         t0 = time.perf_counter()
         x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(x, self.w)
+        if not np.all(np.isfinite(self.w.x.array)):
+            b.set(np.nan)  # a diverged iterate: SNES stops (DIVERGED_FUNCTION_NANORINF), step cut
+            return
         terms = self._masked_terms()
         t1 = time.perf_counter()
         with b.localForm() as bl:

@@ -500,3 +500,15 @@ def test_rotation_coefficients_exact_on_both_sides_of_the_series_switch(angle):
     values = _rotation_coefficients(theta)
     for value, first in zip(values, (1, 2, 3), strict=True):
         assert value[0] == pytest.approx(exact(first), rel=1e-14 if angle < 0.3 else 1e-9)
+
+
+def test_rotation_coefficients_of_a_wild_iterate_do_not_raise():
+    """A diverging Newton iterate (rotations of 1e200 rad) gives non-finite coefficients, which
+    SNES reports as DIVERGED_FUNCTION_NANORINF so that the step is cut, instead of an
+    OverflowError from the series' term count (it crashed a Cardinal run at κ = 0.5 1/m)."""
+    from strand.contact.kinematics import _rotation_coefficients
+
+    with np.errstate(all="ignore"):
+        c = _rotation_coefficients(np.array([[1e200, 0.0, 0.0], [0.1, 0.0, 0.0]]))
+    assert all(np.isfinite(v[1]) for v in c)
+    assert c[0][1] == pytest.approx(np.sin(0.1) / 0.1, rel=1e-15)

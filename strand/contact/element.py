@@ -50,11 +50,12 @@ class ContactSettings:
             A frictionless strand has near-zero-energy modes (wires rolling around the layer
             below) that only the frozen normal's spurious stiffness holds; its gaps are then only
             approximate in bending (up to 11 µm). See ``strand.contact.kinematics``.
-        compliance: "penalty" (the seed paper's: a penalty K_N, and friction reaching μP after an
-            elastic slip g_lim) or "hertz" (contact mechanics from the wires' radii and moduli and
-            the current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
+        compliance: "hertz" (default: contact mechanics from the wires' radii and moduli and the
+            current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
             contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
-            ``strand.contact.hertz``). k_point, k_line and g_lim apply to "penalty" only.
+            ``strand.contact.hertz``) or "penalty" (the seed paper's: a penalty K_N, and friction
+            reaching μP after an elastic slip g_lim). k_point, k_line and g_lim apply to "penalty"
+            only. The default has no free parameter: every stiffness follows from the wires.
         k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
         k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
             line pair gets k_line × its tributary length.
@@ -67,7 +68,7 @@ class ContactSettings:
     """
 
     normal: str = "auto"
-    compliance: str = "penalty"
+    compliance: str = "hertz"
     k_point: float = 5e7
     k_line: float = 5e9
     g_lim: float = 5e-6

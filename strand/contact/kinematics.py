@@ -77,7 +77,8 @@ def _rotation_coefficients(theta):
     """(sin x/x, (1 − cos x)/x², (x − sin x)/x³), x = |θ|, complex-analytic and safe at 0."""
     x2 = _dot(theta, theta)
     small = np.real(x2) < _SMALL_ANGLE2
-    coefficients = [_series(x2, 1), _series(x2, 2), _series(x2, 3)]
+    x2_small = np.where(small, x2, 0.0)  # the series only where it is used (no overflow)
+    coefficients = [_series(x2_small, k) for k in (1, 2, 3)]
     if not np.all(small):  # the closed forms, only where the series would be inexact
         xs2 = np.where(small, 1.0, x2)
         x = np.sqrt(xs2)

@@ -175,7 +175,7 @@ class HertzLineLaw(_ApproachLaw):
             q = np.exp(x)
             value, slope = self._line(q)
             step = (value - d) / (q * slope)
-            x = np.minimum(x - step, 60.0)  # q ≤ 1e26 N/m: far past any real load, no overflow
+            x = np.clip(x - step, -60.0, 60.0)  # absurd iterates stay finite (q ≤ 1e26 N/m)
             if np.max(np.abs(step)) < 1e-14:
                 break
         return np.exp(x)

@@ -158,7 +158,7 @@ def test_hertz_line_law_matches_the_two_cylinder_formula():
     q = 2e4  # N/m
     b = np.sqrt(4 * q * (1.688e-3 / 2) / (np.pi / (2 * c)))
     delta = q / np.pi * 2 * c * (2 * np.log(4 * 1.688e-3 / b) - 1)
-    assert law.force(np.array([-delta + law.START]))[0][0] + law._offset()[0] == pytest.approx(
+    assert law.force(np.array([-delta + law.START]))[0][0] + law.offset[0] == pytest.approx(
         q, rel=1e-9
     )
 

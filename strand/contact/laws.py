@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import numpy.typing as npt
@@ -97,16 +98,18 @@ class _ApproachLaw(NormalLaw):
     def _approach(self, p: Array) -> Array:
         """δ with f(δ) = p (p ≥ f(δ_r))."""
 
-    def _offset(self) -> Array:
+    @cached_property
+    def offset(self) -> Array:
+        """f(δ_r) (P,), N: what the start takes off the force."""
         return self._force(np.full(len(self), self.START))[0]
 
     def force(self, g: Array) -> tuple[Array, Array]:
         closed = g <= 0.0
         f, df = self._force(np.where(closed, -g, 0.0) + self.START)
-        return np.where(closed, f - self._offset(), 0.0), np.where(closed, -df, 0.0)
+        return np.where(closed, f - self.offset, 0.0), np.where(closed, -df, 0.0)
 
     def stiffness(self, p: Array) -> Array:
-        d = self._approach(np.maximum(p, 0.0) + self._offset())
+        d = self._approach(np.maximum(p, 0.0) + self.offset)
         return self._force(d)[1]
 
     @abstractmethod

@@ -287,14 +287,15 @@ class TensionedBeam:
     def __init__(self, length: float, tension: float, curvature: Callable[[Array], Array]):
         self.L, self.T, self.kappa = length, tension, curvature
 
-    def _shoot(self, P: float, M0: float, n: int) -> tuple[float, float]:
-        """Integrate the half span (RK4 on w, w′); returns (w′(a), w(a))."""
+    def _shoot(self, P: Array, M0: Array, n: int) -> tuple[Array, Array]:
+        """Integrate the half span for every (P, M₀) at once (RK4 on w, w′); (w′(a), w(a))."""
         a = self.L / 2
         h = a / n
-        w = dw = 0.0
+        w = np.zeros_like(P)
+        dw = np.zeros_like(P)
 
         def rhs(x, w, dw):
-            return dw, float(self.kappa(np.array([self.T * w - P / 2 * x + M0]))[0])
+            return dw, self.kappa(self.T * w - P / 2 * x + M0)
 
         x = 0.0
         for _ in range(n):
@@ -302,26 +303,28 @@ class TensionedBeam:
             k2 = rhs(x + h / 2, w + h / 2 * k1[0], dw + h / 2 * k1[1])
             k3 = rhs(x + h / 2, w + h / 2 * k2[0], dw + h / 2 * k2[1])
             k4 = rhs(x + h, w + h * k3[0], dw + h * k3[1])
-            w += h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
-            dw += h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+            w = w + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+            dw = dw + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
             x += h
         return dw, w
 
-    def deflection(self, P: float, n: int = 400) -> float:
-        """Midspan deflection on the virgin curve, m (bisection on the clamp moment M₀)."""
-        if P == 0:
-            return 0.0
-        s = np.sign(P)
-        lo, hi = 0.0, s * abs(P) * self.L / 8  # M₀ between 0 and the string-free value PL/8
-        if self._shoot(P, hi, n)[0] * s < 0:
-            hi *= 4
+    def deflections(self, loads: npt.ArrayLike, n: int = 400) -> Array:
+        """Midspan deflections (m) on the virgin curve for all ``loads`` at once (bisection on the
+        clamp moment M₀ of each, vectorised)."""
+        P = np.atleast_1d(np.asarray(loads, dtype=float))
+        s = np.where(P < 0, -1.0, 1.0)
+        lo = np.zeros_like(P)
+        hi = P * self.L / 8  # M₀ between 0 and the string-free value PL/8
+        hi = np.where(self._shoot(P, hi, n)[0] * s < 0, 4 * hi, hi)
         for _ in range(60):
             mid = 0.5 * (lo + hi)
-            if self._shoot(P, mid, n)[0] * s > 0:
-                hi = mid
-            else:
-                lo = mid
+            above = self._shoot(P, mid, n)[0] * s > 0
+            hi, lo = np.where(above, mid, hi), np.where(above, lo, mid)
         return self._shoot(P, 0.5 * (lo + hi), n)[1]
+
+    def deflection(self, P: float, n: int = 400) -> float:
+        """Midspan deflection on the virgin curve, m."""
+        return float(self.deflections([P], n)[0])
 
     def cycle(self, loads: npt.ArrayLike, n: int = 400) -> Array:
         """Deflections along a load history starting at 0 (Masing applies to the whole beam:
@@ -329,7 +332,7 @@ class TensionedBeam:
         scaled by 2)."""
         loads = np.asarray(loads, dtype=float)
         grid = np.linspace(0.0, 2 * np.abs(loads).max(), 41)
-        virgin = np.array([self.deflection(p, n) for p in grid])
+        virgin = self.deflections(grid, n)
 
         def v(p):
             return np.sign(p) * np.interp(np.abs(p), grid, virgin)

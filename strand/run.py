@@ -256,12 +256,14 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
         f"set-up {result.setup_seconds:.0f} s); results in {result.folder}",
     ]
     t = result.tensioned
-    if t is not None:
-        ref = fibre_model(case.cable, case.load.tension)
+    tension_rows = [s for s in result.steps if s.parameter == "tension"]
+    if t is not None and tension_rows:
+        # the last converged tension: the target, or where a failed run stopped
+        tension = tension_rows[-1].load
+        ref = fibre_model(case.cable, tension)
         L = case.mesh.length
-        tension_rows = [s for s in result.steps if s.parameter == "tension"]
         strain = tension_rows[-1].state.end_displacement / L
-        lines.append(f"after tension ({case.load.tension / 1e3:g} kN)   model    fibre model  diff")
+        lines.append(f"after tension ({tension / 1e3:g} kN)   model    fibre model  diff")
         lines.append(
             f"  strain (µε)              {1e6 * strain:8.0f}  {1e6 * ref['strain']:8.0f}  "
             f"{100 * (strain / ref['strain'] - 1):+6.1f} %"

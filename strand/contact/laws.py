@@ -282,7 +282,7 @@ class Mindlin(FrictionLaw):
     """K_T = ``ratio`` × dp/dδ(P₀): Mindlin's initial tangential stiffness of a Hertz contact,
     ``ratio`` = k_T/k_N per pair (``hertz.mindlin_ratio``)."""
 
-    ratio: Array | float = 0.82
+    ratio: Array | float
 
     def stiffness(self, p_start, normal):
         return self.ratio * normal.stiffness(p_start) * (p_start > 0)

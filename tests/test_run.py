@@ -160,7 +160,8 @@ def test_bending_softens_from_stick_towards_slip_within_the_stiffness_bounds(tmp
     """0.4 m of Cardinal with μ = 0.05 at 40 kN, saddle load to 1.5 kN: the midspan secant
     stiffness M/κ lies between EI_min and EI_max and falls as the layers slip; unloading starts
     stiffer (stick again). (With the real μ = 0.3–0.5 a 0.4 m span does not slip at 3 kN: M/κ
-    stays at 425–450 N m², so a low μ brings slip within reach of a short test.)"""
+    stays at 425–450 N m² with the seed penalty, so a low μ brings slip within reach of a short
+    test.)"""
     import tomllib
     from importlib import resources
 

@@ -137,7 +137,7 @@ def results_figures(case, result, problem) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .post import bending_stiffness_bounds, saddle_beam_reference, sector_of
+    from .post import bending_stiffness_bounds, sector_of
 
     folder = Path(result.folder)
     paths = []
@@ -193,11 +193,8 @@ def results_figures(case, result, problem) -> list[Path]:
         P = [0.0] + [s.state.lateral / 1e3 for s in lateral]
         d = [0.0] + [1e3 * s.state.deflection for s in lateral]
         ax.plot(d, P, "o-", ms=3, label="model")
-        ref = saddle_beam_reference(
-            case.cable, case.mesh.length, case.load.tension, 1e3 * np.array(P)
-        )
         for rule, style in (("cumulative", "--"), ("own_tension", ":")):
-            ax.plot(1e3 * ref[rule], P, style, color="k",
+            ax.plot(1e3 * np.r_[0.0, result.beam_reference[rule]], P, style, color="k",
                     label=f"beam, stick–slip law ({rule.replace('_', ' ')}, Masing)")  # fmt: skip
         ax.legend(fontsize=8)
         ax.set_xlabel("midspan deflection (mm)")

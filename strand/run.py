@@ -59,6 +59,8 @@ class RunResult:
     steps: list[RunStep] = field(default_factory=list)
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: dict | None = None  # contact pair results there (``pair_results``)
+    #: saddle runs: the analytical beam's deflections (m) at every cycle step, per friction rule
+    beam_reference: dict | None = None
     peak: CellResults | None = None  # at the largest |cycle load| reached
     peak_w: object | None = None  # nodal unknowns at that state
     failure: str = ""
@@ -234,6 +236,11 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         key_states.peak_w,
     )
     result.tensioned_pairs = key_states.tensioned_pairs
+    if case.load.kind == "saddle" and result.cycle_steps:
+        loads = [s.state.lateral for s in result.cycle_steps]
+        result.beam_reference = saddle_beam_reference(
+            case.cable, case.mesh.length, case.load.tension, loads
+        )
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=output_seconds)
     summary = summarize(case, result, problem)
@@ -336,7 +343,7 @@ def saddle_beam_lines(case: Case, result: RunResult) -> list[str]:
     """The saddle test's deflections beside the tensioned beam with the stick–slip law."""
     steps = result.cycle_steps
     loads = np.array([s.state.lateral for s in steps])
-    ref = saddle_beam_reference(case.cable, case.mesh.length, case.load.tension, loads)
+    ref = result.beam_reference
     peak = int(np.argmax(np.abs(loads)))
     lines = ["tensioned beam with the stick–slip law (clamped–clamped, Masing), deflection (mm):",
              "  P (kN)   model   law: cumulative  own tension"]  # fmt: skip

@@ -32,7 +32,7 @@ from strand.geometry import LINE, POINT, build_geometry  # isort: skip
 from strand.mesh import beam_space, input_to_block, polyline_mesh  # isort: skip
 from strand.problem import StrandProblem  # isort: skip
 from strand.setups.saddle import saddle_weights  # isort: skip
-from strand.solver import LoadStepper, NewtonOptions, NewtonSolver, NodalLoad  # isort: skip
+from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad  # isort: skip
 
 R_A, R_B = 1.5e-3, 2.0e-3  # m
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6
@@ -512,3 +512,55 @@ def test_rotation_coefficients_of_a_wild_iterate_do_not_raise():
         c = _rotation_coefficients(np.array([[1e200, 0.0, 0.0], [0.1, 0.0, 0.0]]))
     assert all(np.isfinite(v[1]) for v in c)
     assert c[0][1] == pytest.approx(np.sin(0.1) / 0.1, rel=1e-15)
+
+
+def test_a_diverged_newton_under_friction_is_cut_not_accepted():
+    """Two crossed beams pressed together (P) and a tangential load on the upper one, which is
+    free to slide along x: beyond μP there is no equilibrium. Newton then blows up (residual
+    ~1e31 N, ||w|| ~ 1e19 m) until PETSc's relative step test ``stol`` is met; that must count as
+    a failure. The load stepper must cut, commit only states in equilibrium below μP, and stop
+    with a clear message at the last converged one."""
+    length, n = 0.2, 40
+    s = np.linspace(-length / 2, length / 2, n + 1)
+    pts = np.vstack([s[:, None] * [1.0, 0, 0], s[:, None] * [0, 1.0, 0] + [0, 0, 2 * R_A]])
+    cells = np.vstack([np.column_stack([np.arange(n), np.arange(1, n + 1)])] * 2)
+    cells[n:] += n + 1
+    mesh = polyline_mesh(MPI.COMM_WORLD, pts, cells)
+    V = beam_space(mesh)
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(2 * R_A, 200e9, 0.3))
+    i2b = input_to_block(V)
+    bcs = [fem.dirichletbc(np.zeros(6), i2b[[0, n]].astype(np.int32), V)]
+    upper_ends = i2b[[n + 1, 2 * n + 1]]
+    for c in range(1, 6):  # the upper beam's ends: free along x only
+        bcs.append(fem.dirichletbc(0.0, (6 * upper_ends + c).astype(np.int32), V.sub(c)))
+    a, b = n // 2, n + 1 + n // 2
+    group = ContactGroup(
+        i2b[[a, b]][None], pts[[a, b]][None], False, [R_A], [R_A], [[0, 0, 1.0]],
+        PenaltyLaw(np.array([K_N])), ElasticSlip(np.array([MU]), G_LIM), "director",
+        np.array([[[1.0, 0, 0], [0, 1.0, 0]]]),
+    )  # fmt: skip
+    press = NodalLoad([i2b[b]], [[0, 0, -2.0, 0, 0, 0]], 1.0)
+    drag = NodalLoad([i2b[b]], [[1.0, 0, 0, 0, 0, 0]], 0.0)
+    options = NewtonOptions(atol=1e-7)
+    solver = NewtonSolver(beam.residual(), w, bcs, terms=[group, press, drag], options=options)
+    assert solver.solve().converged
+    solver.commit()
+    mu_p = MU * group.state.force[0]
+
+    drag.factor = 1.2 * mu_p
+    result = solver.solve()
+    assert not result.converged
+    assert not result.residual <= 1.0  # it did blow up: this is the case the check is for
+    solver.rollback()
+
+    committed = []
+    stepper = LoadStepper(solver, first_step=0.6 * mu_p, min_step=0.6 * mu_p / 2**6,
+                          on_step=committed.append)  # fmt: skip
+    with pytest.raises(LoadStepFailure, match="no convergence"):
+        stepper.ramp(lambda f: setattr(drag, "factor", f), 0.0, 1.5 * mu_p, "drag")
+    assert committed and all(r.load < mu_p for r in committed)
+    assert max(r.load for r in committed) > 0.95 * mu_p  # the cuts closed in on μP
+    assert all(r.residuals[-1] <= options.atol for r in committed)
+    assert np.all(np.isfinite(w.x.array)) and np.abs(w.x.array).max() < 1e-3
+    assert drag.factor == committed[-1].load  # the load is back at the last converged state

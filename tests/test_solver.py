@@ -183,3 +183,21 @@ def test_a_failed_factorisation_does_not_poison_the_next_solve():
     spring.evaluate = evaluate
     result = solver.solve()
     assert result.converged and result.iterations <= 2
+
+
+def test_each_solver_has_its_own_petsc_options_and_removes_them():
+    """Two solvers in one process: the second does not inherit the first one's extra options,
+    and ``destroy`` leaves no option of a solver in PETSc's database (none reported unused)."""
+    from petsc4py import PETSc
+
+    opts = PETSc.Options()
+    first = cantilever(4, options=NewtonOptions(petsc={"mat_mumps_icntl_14": 80})).solver
+    second = cantilever(4).solver
+    assert first.prefix != second.prefix
+    assert opts.getInt(f"{first.prefix}mat_mumps_icntl_14") == 80
+    assert not opts.hasName(f"{second.prefix}mat_mumps_icntl_14")
+    assert second.snes.getKSP().getPC().getType() == "lu"
+    first.destroy()
+    second.destroy()
+    left = [k for k in opts.getAll() if k.startswith((first.prefix, second.prefix))]
+    assert left == []

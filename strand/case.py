@@ -68,6 +68,7 @@ __all__ = [
     "OutputSettings",
     "load_case",
     "case_from_dict",
+    "parse_settings",
 ]
 
 BUILTIN_CABLES = {"cardinal": cardinal}
@@ -138,7 +139,7 @@ SECTIONS = {
 }
 
 #: settings that may be zero or negative (all other numbers must be positive)
-_SIGNED = {("load", "tension"), ("load", "lateral"), ("load", "curvature")}
+_SIGNED = {("load", "lateral"), ("load", "curvature")}
 
 
 def _value(section: str, key: str, value, default):
@@ -156,6 +157,11 @@ def _value(section: str, key: str, value, default):
             raise CaseError(f"{where}: expected a number")
         if isinstance(default, int) and not float(value).is_integer():
             raise CaseError(f"{where}: expected a whole number")
+        if (section, key) == ("load", "tension") and not value > 0:
+            raise CaseError(
+                f"{where}: expected a positive tension; a compressed strand is outside the "
+                "model (its wires buckle and its contact pairs open)"
+            )
         if (section, key) not in _SIGNED and not value > 0:
             raise CaseError(f"{where}: expected a positive number")
         return type(default)(value)
@@ -226,10 +232,22 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
         raise CaseError(f"{source}: [steps] lateral = {steps.lateral} exceeds lateral_max")
     if steps.curvature > steps.curvature_max:
         raise CaseError(f"{source}: [steps] curvature = {steps.curvature} exceeds curvature_max")
-    load, length = sections["load"], sections["mesh"].length
+    load, mesh = sections["load"], sections["mesh"]
+    length = mesh.length
+    if mesh.h_max >= length:
+        raise CaseError(
+            f"{source}: [mesh] h_max = {mesh.h_max} m must be shorter than the span "
+            f"[mesh] length = {length} m"
+        )
     if load.kind not in LOAD_KINDS:
         raise CaseError(
             f"{source}: [load] kind = {load.kind!r} is unknown; choose {' or '.join(LOAD_KINDS)}"
+        )
+    if load.kind == "saddle" and not mesh.h_max <= load.saddle_length < length:
+        raise CaseError(
+            f"{source}: [load] saddle_length = {load.saddle_length} m must be shorter than the "
+            f"span ([mesh] length = {length} m) and at least [mesh] h_max = {mesh.h_max} m (so "
+            "that every outer wire has a node under the saddle)"
         )
     if load.kind == "bending" and load.zone >= length:
         raise CaseError(
@@ -238,19 +256,59 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
     return Case(cable, **sections, source=source)
 
 
-def load_case(path: str | Path | None = None) -> Case:
-    """Read a case file; ``None`` gives the default case (the seed paper's Cardinal test)."""
+def parse_settings(items: list[str]) -> dict:
+    """``["section.key=value", ...]`` (the command line's ``--set``) as a nested dict of case
+    settings; values are read as TOML (``2e-3``, ``true``, ``[1.0, 0.0]``), or else as strings."""
+    out: dict = {}
+    for item in items:
+        name, eq, text = item.partition("=")
+        section, dot, key = name.strip().rpartition(".")
+        if not eq or not key or (dot and not section) or "." in section:
+            raise CaseError(f"--set {item!r}: expected section.key=value, e.g. mesh.h_max=2e-3")
+        try:
+            value = tomllib.loads(f"v = {text.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            value = text.strip()
+        if section:
+            out.setdefault(section, {})[key] = value
+        else:
+            out[key] = value
+    return out
+
+
+def _merge(data: dict, overrides: dict) -> dict:
+    merged = dict(data)
+    for k, v in overrides.items():
+        if isinstance(v, dict) and isinstance(merged.get(k), dict):
+            merged[k] = {**merged[k], **v}
+        else:
+            merged[k] = v
+    return merged
+
+
+def load_case(path: str | Path | None = None, settings: list[str] = ()) -> Case:
+    """Read a case file; ``None`` gives the default case (the seed paper's Cardinal test).
+    ``settings`` (``"section.key=value"``, from ``--set``) override the file's."""
+    overrides = parse_settings(list(settings))
     if path is None:
-        return case_from_dict({}, source="built-in default")
+        source = "built-in default" + (" with --set" if settings else "")
+        return case_from_dict(overrides, source=source)
     path = Path(path)
     try:
         data = tomllib.loads(path.read_text())
     except FileNotFoundError:
         raise CaseError(f"{path}: no such case file") from None
+    except IsADirectoryError:
+        raise CaseError(f"{path}: is a folder; give a case file (TOML)") from None
+    except UnicodeDecodeError:
+        raise CaseError(f"{path}: not a text file; give a case file (TOML)") from None
+    except OSError as e:
+        raise CaseError(f"{path}: cannot be read ({e.strerror})") from None
     except tomllib.TOMLDecodeError as e:
         raise CaseError(f"{path}: not valid TOML ({e})") from None
     if "core" in data and "layer" in data:  # a bare cable description is a case too
         data = {"cable": data}
+    data = _merge(data, overrides)
     output = data.get("output", {})
     if isinstance(output, dict) and "folder" not in output:  # results/<case name> by default
         data = {**data, "output": {**output, "folder": f"results/{path.stem}"}}

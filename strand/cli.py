@@ -6,6 +6,10 @@ strand mesh [case.toml]   build the strand mesh and contact pairs, print the tab
 strand compare [case.toml]
                           run the case with small- and large-sliding contact; compare forces,
                           deflections and cost
+
+--set section.key=value changes one setting of the case (repeatable), e.g. --set mesh.length=0.5.
+Exit codes: 0 done, 2 bad input (one line on stderr, nothing computed), 3 a load step failed,
+130 interrupted (Ctrl-C); a stopped run keeps every step written so far, with its summary.
 """
 
 from __future__ import annotations
@@ -13,7 +17,6 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -55,9 +58,11 @@ def mesh_table(geometry) -> str:
 
 def _mesh(args) -> int:
     from .case import load_case
+    from .folder import writable_folder
     from .geometry import build_geometry
 
-    case = load_case(args.case)
+    case = load_case(args.case, args.set)
+    out = writable_folder(args.out)
     t0 = time.perf_counter()
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     t_geo = time.perf_counter() - t0
@@ -68,8 +73,6 @@ def _mesh(args) -> int:
     t_mesh = time.perf_counter() - t0
     print(mesh_table(geometry))
     print(f"\nbuilt in {t_geo:.3f} s (geometry and pairs) + {t_mesh:.3f} s (dolfinx mesh)")
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     write_centrelines(geometry, out / "centrelines.vtu")
     if not args.no_picture:
         from .plots import strand_picture
@@ -81,20 +84,20 @@ def _mesh(args) -> int:
 def _run(args) -> int:
     from .case import load_case
 
-    case = load_case(args.case)  # every setting is checked here, before any computing
+    case = load_case(args.case, args.set)  # every setting is checked here, before computing
     from .run import run_case
 
-    result = run_case(case, args.out)
-    return 3 if result.failure else 0
+    result = run_case(case, args.out, overwrite=args.overwrite)
+    return 130 if result.interrupted else 3 if result.failure else 0
 
 
 def _compare(args) -> int:
     from .case import load_case
 
-    case = load_case(args.case)
+    case = load_case(args.case, args.set)
     from .compare import compare_case
 
-    compare_case(case, args.out)
+    compare_case(case, args.out, overwrite=args.overwrite)
     return 0
 
 
@@ -102,6 +105,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="strand", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
+    from . import __version__
+
+    parser.add_argument("--version", action="version", version=f"strand {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     from . import case as case_module
 
@@ -117,6 +123,10 @@ def main(argv: list[str] | None = None) -> int:
         "case", nargs="?", help="case file (TOML); default: the built-in Cardinal case"
     )
     run.add_argument("--out", help="results folder (default: [output] folder, or results/<case>)")
+    run.add_argument(
+        "--overwrite", action="store_true",
+        help="replace the results of an earlier run in the folder (refused otherwise)",
+    )  # fmt: skip
     mesh = sub.add_parser(
         "mesh", help="build the strand mesh and contact pairs; print and draw them"
     )
@@ -138,9 +148,19 @@ def main(argv: list[str] | None = None) -> int:
     compare.add_argument(
         "--out", help="results folder (default: <case output folder>/sliding_comparison)"
     )
+    compare.add_argument(
+        "--overwrite", action="store_true", help="replace the results of an earlier comparison"
+    )
+    for p in (run, mesh, compare):
+        p.add_argument(
+            "--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+            help="change one setting of the case (TOML value), e.g. --set load.tension=20e3; "
+            "repeatable",
+        )  # fmt: skip
     args = parser.parse_args(argv)
     from .cable import CableError
     from .case import CaseError
+    from .folder import FolderError
 
     try:
         if args.command == "mesh":
@@ -148,6 +168,9 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "compare":
             return _compare(args)
         return _run(args)
-    except (CableError, CaseError) as e:
+    except (CableError, CaseError, FolderError) as e:
         print(f"strand: error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # a second Ctrl-C, or one outside the load steps
+        print("strand: interrupted; the steps written so far are kept", file=sys.stderr)
+        return 130

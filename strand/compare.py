@@ -95,18 +95,27 @@ def overlay_figure(a: CellResults, b: CellResults, n_layers: int, title: str, pa
     return path
 
 
-def compare_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) -> str:
+def compare_case(
+    case: Case, folder: str | Path | None = None, stream=None, overwrite: bool = False
+) -> str:
     """Run ``case`` with both contact models into ``folder``/small and ``folder``/large (default
     folder: the case's output folder + ``/sliding_comparison``); return the comparison text,
-    also written to ``comparison.txt`` there."""
+    also written to ``comparison.txt`` there. Both folders are checked before either run
+    (``folder.prepare_results_folder``; ``overwrite`` replaces an earlier comparison)."""
+    from .folder import prepare_results_folder
     from .run import run_case
 
+    stream = stream or sys.stdout
     folder = Path(folder or Path(case.output.folder) / "sliding_comparison")
+    for model in ("small", "large"):
+        prepare_results_folder(folder / model, overwrite)
     results = {}
     for model in ("small", "large"):
         print(f"--- contact model: {model} sliding ---", file=stream, flush=True)
         variant = replace(case, contact=replace(case.contact, model=model))
         results[model] = run_case(variant, folder / model, stream)
+        if results[model].interrupted:
+            raise KeyboardInterrupt
     small, large = results["small"], results["large"]
     n_layers = len(case.cable.layers)
     lines = [

@@ -47,7 +47,10 @@ def saddle_weights(points: Array, direction: Array) -> tuple[npt.NDArray[np.intp
     cos_psi, sin_psi = inward @ d, inward @ side
     pressed = np.flatnonzero(cos_psi > 1e-12)
     if len(pressed) < 2:
-        raise ValueError("the saddle covers fewer than two outer-layer nodes; lengthen it")
+        raise ValueError(
+            "the saddle covers fewer than two outer-layer nodes: lengthen it ([load] "
+            "saddle_length) or refine the mesh ([mesh] h_max)"
+        )
     c, s = cos_psi[pressed], sin_psi[pressed]
     A = np.array([[np.sum(c * c), np.sum(c * c * s)], [np.sum(c * s), np.sum(c * s * s)]])
     alpha, beta = np.linalg.solve(A, [1.0, 0.0])

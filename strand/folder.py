@@ -1,0 +1,69 @@
+"""The results folder of a run: created and checked before any computing, never shared by two runs.
+
+A run owns the files at the top of its folder (``settings.txt`` marks them as a run's). A second
+run into a folder that holds a run is refused unless asked to ``overwrite``, which first removes
+the earlier run's files (and its ``*.bp`` field folders), so that no figure or field of one run
+can sit beside another run's tables. Sub-folders (another run's own folder, e.g. a comparison's)
+are left alone. A folder holding other files is never written into.
+"""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+__all__ = ["FolderError", "RUN_MARKER", "prepare_results_folder", "writable_folder"]
+
+#: the file every run writes first into its folder
+RUN_MARKER = "settings.txt"
+
+
+class FolderError(ValueError):
+    """A results folder that cannot be used; the message names it and says what to do."""
+
+
+def writable_folder(folder: str | Path) -> Path:
+    """Create ``folder`` if needed and check that files can be written in it; raise
+    ``FolderError`` naming the problem otherwise."""
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise FolderError(f"{folder}: is a file, not a folder; give a results folder")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise FolderError(f"{folder}: cannot create the results folder ({e.strerror})") from None
+    probe = folder / ".strand-write-test"
+    try:
+        probe.write_text("")
+        probe.unlink()
+    except OSError as e:
+        raise FolderError(f"{folder}: the results folder is not writable ({e.strerror})") from None
+    return folder
+
+
+def prepare_results_folder(folder: str | Path, overwrite: bool = False) -> Path:
+    """Create ``folder`` (or empty it of an earlier run's files when ``overwrite``) and check
+    that it is writable; raise ``FolderError`` naming the problem otherwise."""
+    folder = writable_folder(folder)
+    owned = [
+        p for p in folder.iterdir()
+        if not p.name.startswith(".") and (p.is_file() or p.suffix == ".bp")
+    ]  # fmt: skip
+    if owned:
+        if not (folder / RUN_MARKER).is_file():
+            raise FolderError(
+                f"{folder}: holds files that are not a strand run's; give a new or empty folder"
+            )
+        if not overwrite:
+            raise FolderError(
+                f"{folder}: holds the results of an earlier run; give another folder (--out) "
+                "or replace them (--overwrite)"
+            )
+        try:
+            for p in owned:
+                shutil.rmtree(p) if p.is_dir() else p.unlink()
+        except OSError as e:
+            raise FolderError(
+                f"{folder}: cannot remove the earlier run's {Path(e.filename).name} ({e.strerror})"
+            ) from None
+    return folder

@@ -1,0 +1,156 @@
+"""The command line as a user meets it: bad input gets one line and nothing is computed, results
+folders never mix two runs, Ctrl-C keeps what was computed, ``--set`` and ``--version``."""
+
+from __future__ import annotations
+
+import csv
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import strand  # noqa: F401
+
+from strand.case import CaseError, load_case  # isort: skip
+from strand.cli import main  # isort: skip
+
+from test_run import SEVEN_WIRE  # isort: skip
+
+QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
+
+
+@pytest.fixture
+def seven(tmp_path) -> Path:
+    path = tmp_path / "seven.toml"
+    path.write_text(QUICK)
+    return path
+
+
+def one_line_error(capsys) -> str:
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    return lines[0]
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["{tmp}"], "is a folder; give a case file"),
+        (["{case}", "--set", "mesh.h_max=0.2"], r"h_max = 0.2 m must be shorter than the span"),
+        (["{case}", "--set", "load.saddle_length=0.5"], "saddle_length = 0.5 m must be shorter"),
+        (["{case}", "--set", "load.saddle_length=1e-3"], "at least \\[mesh\\] h_max"),
+        (["{case}", "--set", "load.tension=-5e3"], "compressed strand is outside the model"),
+        (["{case}", "--set", "meshh_max"], "expected section.key=value"),
+        (["{case}", "--set", "mesh.hmax=1"], r"unknown setting\(s\) in \[mesh\]: \['hmax'\]"),
+        (["{case}", "--out", "{case}"], "is a file, not a folder"),
+        (["{case}", "--out", "{case}/sub"], "cannot create the results folder"),
+    ],
+)
+def test_bad_input_gets_one_line_and_nothing_is_computed(tmp_path, seven, capsys, args, message):
+    args = [a.format(tmp=tmp_path, case=seven) for a in args]
+    before = sorted(tmp_path.rglob("*"))
+    assert main(["run", *args]) == 2
+    line = one_line_error(capsys)
+    assert line.startswith("strand: error: ")
+    assert re.search(message, line), line
+    assert sorted(tmp_path.rglob("*")) == before  # nothing computed, nothing written
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
+def test_a_read_only_results_folder_is_named(tmp_path, seven, capsys):
+    out = tmp_path / "ro"
+    out.mkdir()
+    out.chmod(0o500)
+    try:
+        assert main(["run", str(seven), "--out", str(out)]) == 2
+    finally:
+        out.chmod(0o700)
+    assert "is not writable" in one_line_error(capsys)
+
+
+def test_set_overrides_the_case_file(seven):
+    case = load_case(seven, ["mesh.length=0.25", "contact.friction=false", 'cable="cardinal"'])
+    assert case.mesh.length == 0.25 and not case.contact.friction
+    assert case.cable.name.startswith("Cardinal") and case.load.tension == 10e3
+    assert load_case(None, ["load.lateral=1e3"]).load.lateral == 1e3
+    with pytest.raises(CaseError, match="expected a number"):
+        load_case(seven, ["mesh.length=short"])  # not TOML: read as a string, then refused
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["--version"])
+    assert exit_.value.code == 0
+    assert capsys.readouterr().out.strip() == f"strand {strand.__version__}"
+
+
+def test_a_second_run_into_a_folder_is_refused_and_overwrite_replaces_it(tmp_path, capsys):
+    """Run 1 writes fields and figures; run 2 into the same folder is refused (nothing touched);
+    with --overwrite and those outputs off, none of run 1's files is left beside run 2's."""
+    case = tmp_path / "seven.toml"
+    case.write_text(SEVEN_WIRE.replace("plots = false", "plots = true"))
+    out = tmp_path / "out"
+    assert main(["run", str(case), "--out", str(out), "--set", "load.cycle=[1.0]"]) == 0
+    first = {p.name: p.stat().st_mtime_ns for p in out.iterdir()}
+    assert {"fields.xdmf", "fields.h5", "fields.bp", "load_deflection.png"} <= set(first)
+    capsys.readouterr()
+    assert main(["run", str(case), "--out", str(out)]) == 2
+    assert "holds the results of an earlier run" in one_line_error(capsys)
+    assert {p.name: p.stat().st_mtime_ns for p in out.iterdir()} == first
+    off = ["--set", "output.fields=false", "--set", "output.plots=false"]
+    assert main(["run", str(case), "--out", str(out), "--overwrite", *off]) == 0
+    second = {p.name for p in out.iterdir()}
+    assert not any(n.startswith("fields") or n.endswith(".png") for n in second), second
+    assert "fields = False" in (out / "settings.txt").read_text()
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("not a run")
+    assert main(["run", str(case), "--out", str(tmp_path / "mine"), "--overwrite"]) == 2
+    assert "not a strand run's" in one_line_error(capsys)
+    assert (tmp_path / "mine" / "notes.txt").read_text() == "not a run"
+
+
+def test_ctrl_c_stops_at_the_last_converged_step_and_keeps_everything(tmp_path):
+    """Ctrl-C during the cycle: the run stops at a converged step, writes its summary (saying it
+    was interrupted), keeps every step, exits with 130 and no traceback."""
+    case = tmp_path / "seven.toml"
+    case.write_text(SEVEN_WIRE.replace("lateral = 100.0", "lateral = 5.0")  # many small steps
+                    .replace("plots = false", "plots = true\nfields = false"))  # fmt: skip
+    out = tmp_path / "out"
+    run = subprocess.Popen(
+        [sys.executable, "-m", "strand", "run", str(case), "--out", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path,
+    )  # fmt: skip
+    lines = []
+    deadline = time.monotonic() + 120
+    for line in run.stdout:
+        lines.append(line)
+        if "leg 1" in line or time.monotonic() > deadline:
+            break
+    run.send_signal(signal.SIGINT)
+    stdout, stderr = run.communicate(timeout=120)
+    text = "".join(lines) + stdout
+    assert run.returncode == 130, text + stderr
+    assert "Traceback" not in stderr + text
+    assert "interrupted" in text
+    summary = (out / "summary.txt").read_text()
+    assert summary.startswith("INTERRUPTED:") and "stopped: leg" in summary
+    with open(out / "steps.csv") as f:
+        steps = list(csv.DictReader(f))
+    assert any(s["stage"] == "leg 1" for s in steps)
+    n = int(summary.split()[1])
+    assert len(steps) == n  # every step reported was written
+    # the figures say the run is incomplete: a line in red (tab:red) at the bottom
+    import matplotlib.image
+
+    image = matplotlib.image.imread(out / "load_deflection.png")[..., :3]
+    bottom = image[int(0.95 * len(image)) :]
+    red = np.all(np.abs(bottom - [0.839, 0.153, 0.157]) < 0.05, axis=-1)
+    assert red.sum() > 50

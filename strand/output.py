@@ -1,7 +1,9 @@
-"""Result files written as a run goes: XDMF time series of the beam fields for ParaView."""
+"""Result files written as a run goes: time series of the beam fields, as XDMF (ParaView, meshio)
+and VTX (ADIOS2: ParaView, PyVista)."""
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +16,7 @@ from dolfinx import fem  # isort: skip
 
 from forms import ReissnerBeam  # isort: skip
 
-__all__ = ["FieldWriter", "cell_function", "section_force_values"]
+__all__ = ["FieldWriter", "cell_function", "meshio_layout", "section_force_values"]
 
 
 def cell_function(mesh: dolfinx.mesh.Mesh, values_by_input_cell: npt.ArrayLike, name: str):
@@ -29,15 +31,17 @@ def cell_function(mesh: dolfinx.mesh.Mesh, values_by_input_cell: npt.ArrayLike, 
 
 
 class FieldWriter:
-    """XDMF time series of displacement u (m), rotation vector θ (rad) and section forces.
+    """Time series of displacement u (m), rotation vector θ (rad) and section forces, as XDMF
+    (``path``, with its HDF5 file) and, with ``vtx``, as VTX (``path`` with suffix ``.bp``).
 
     Section forces are cell-wise, in the section frame: ``force`` = (N, V2, V3) in N and
     ``moment`` = (torque, M2, M3) in N m; ``axial_force`` = N alone. Constant cell data (wire and
     layer ids, ...) given as DG0 functions in ``cell_data`` are written with every step so that
-    ParaView can threshold on them at any time.
+    ParaView can threshold on them at any time. The XDMF file is kept in the layout meshio reads
+    too (``meshio_layout``).
     """
 
-    def __init__(self, path: str | Path, beam: ReissnerBeam, cell_data=()):
+    def __init__(self, path: str | Path, beam: ReissnerBeam, cell_data=(), vtx: bool = True):
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         w = beam.w
@@ -60,25 +64,86 @@ class FieldWriter:
             (self.axial, fem.Expression(beam.N[0], D1.element.interpolation_points)),
         ]
         self.cell_data = list(cell_data)
+        self.functions = [f for f, _ in self._exprs] + self.cell_data
         self._file = dolfinx.io.XDMFFile(mesh.comm, str(self.path), "w")
         self._file.write_mesh(mesh)
+        self._vtx = None
+        if vtx:
+            self._vtx = dolfinx.io.VTXWriter(
+                mesh.comm, self.path.with_suffix(".bp"), self.functions, engine="BP4",
+                mesh_policy=dolfinx.io.VTXMeshPolicy.reuse,
+            )  # fmt: skip
+        self._comm = mesh.comm
 
     def write(self, t: float) -> None:
-        """Evaluate and append every field at time (load) ``t``; flushed to disk at once."""
+        """Evaluate and append every field at time ``t``; flushed to disk at once."""
         for f, e in self._exprs:
             f.interpolate(e)
-        for f in [f for f, _ in self._exprs] + self.cell_data:
+        for f in self.functions:
             self._file.write_function(f, t)
         self._file.flush()
+        self._relayout()
+        if self._vtx is not None:
+            self._vtx.write(t)
 
     def close(self) -> None:
         self._file.close()
+        self._relayout()
+        if self._vtx is not None:
+            self._vtx.close()
+            self._vtx = None
+
+    def _relayout(self) -> None:
+        self._comm.Barrier()
+        if self._comm.rank == 0:
+            meshio_layout(self.path)
+        self._comm.Barrier()
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc):
         self.close()
+
+
+_XI = "https://www.w3.org/2001/XInclude"
+
+
+def meshio_layout(path: str | Path) -> None:
+    """Rewrite dolfinx's XDMF index (one temporal collection per function, topology type
+    ``PolyLine``) in place as one temporal collection whose steps hold every function, with the
+    type spelled ``Polyline``: the layout meshio's ``TimeSeriesReader`` reads (it takes only the
+    last collection and does not know ``PolyLine``) and ParaView reads as before. The HDF5 data
+    are not touched. A file already in that layout is left as it is."""
+    ET.register_namespace("xi", _XI)
+    tree = ET.parse(path)
+    domain = tree.getroot().find("Domain")
+    grids = list(domain)
+    for topology in domain.iter("Topology"):
+        if topology.get("TopologyType") == "PolyLine":
+            topology.set("TopologyType", "Polyline")
+    collections = [
+        g
+        for g in grids
+        if g.get("GridType") == "Collection" and g.get("CollectionType") == "Temporal"
+    ]
+    if len(collections) > 1:
+        steps = [list(c) for c in collections]
+        n = min(len(s) for s in steps)
+        merged = ET.Element("Grid", Name="fields", GridType="Collection", CollectionType="Temporal")
+        for k in range(n):
+            first = steps[0][k]
+            grid = ET.SubElement(merged, "Grid", Name=f"step {k}", GridType="Uniform")
+            for child in first:
+                if child.tag != "Attribute":  # the mesh's xi:include and the time
+                    grid.append(child)
+            for s in steps:
+                grid.extend(a for a in s[k] if a.tag == "Attribute")
+        for c in collections:
+            domain.remove(c)
+        domain.append(merged)
+    ET.indent(tree)
+    tree.write(path, xml_declaration=True, encoding="utf-8")
 
 
 def section_force_values(beam: ReissnerBeam) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""Pictures: off-screen pyvista renderings of wires as tubes (matplotlib figures come later)."""
+"""Figures of a run (matplotlib) and pictures of the strand (off-screen pyvista, wires as tubes)."""
 
 from __future__ import annotations
 
@@ -145,9 +145,15 @@ def results_figures(case, result, problem) -> list[Path]:
     L = case.mesh.length
     cmap = plt.get_cmap("twilight", 8)
 
+    note = incomplete_note(result)
+
     def save_fig(fig, name, tight=True):
         if tight:  # not with a colour bar shared by several axes
-            fig.tight_layout()
+            fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
+        elif note and fig.get_layout_engine() is not None:  # constrained: leave the bottom free
+            fig.get_layout_engine().set(rect=(0, 0.05, 1, 0.95))
+        if note:
+            fig.text(0.5, 0.005, note, color="tab:red", ha="center", va="bottom", fontsize=9)
         fig.savefig(folder / name, dpi=110)
         plt.close(fig)
         paths.append(folder / name)
@@ -172,21 +178,27 @@ def results_figures(case, result, problem) -> list[Path]:
         save_fig(fig, "axial_force_sectors.png", tight=False)
 
     if peak is not None and base is not None:
-        fig, axes = plt.subplots(1, n_layers - 1, figsize=(3.2 * (n_layers - 1), 3.4), sharey=True)
+        fig, axes = plt.subplots(1, n_layers - 1, sharey=True, layout="constrained",
+                                 figsize=(max(3.2 * (n_layers - 1), 6.0) + 1.0, 3.8))  # fmt: skip
         near = np.abs(peak.z - L / 2) <= 0.1 * L
         for i, ax in enumerate(np.atleast_1d(axes), start=1):
             m = near & (peak.layer == i)
-            ax.scatter(peak.phi[m], peak.axial[m] - base.axial[m], s=3, c=peak.z[m], cmap="viridis")
+            sc = ax.scatter(peak.phi[m], peak.axial[m] - base.axial[m], s=3, c=1e3 * peak.z[m],
+                            cmap="viridis", vmin=1e3 * 0.4 * L, vmax=1e3 * 0.6 * L)  # fmt: skip
             ax.axhline(0, color="k", lw=0.5)
             ax.set_xticks([-180, -90, 0, 90, 180])
             ax.set_title(f"layer {i}")
-            ax.set_xlabel("φ (deg)")
-        np.atleast_1d(axes)[0].set_ylabel("ΔN (N), |z − L/2| ≤ 0.1 L")
-        fig.suptitle("change of axial force from the tensioned state to the largest load")
-        save_fig(fig, "axial_force_change.png")
+            ax.set_xlabel("φ (deg), 90° = stretched fibre")
+        np.atleast_1d(axes)[0].set_ylabel("ΔN (N)")
+        fig.colorbar(sc, ax=axes, label="z (mm)", pad=0.01)
+        fig.suptitle(
+            f"change of wire axial force from the tensioned state to P = {P_peak / 1e3:.2f} kN\n"
+            f"(elements within ±{0.1 * L * 1e3:g} mm of midspan)"
+        )
+        save_fig(fig, "axial_force_change.png", tight=False)
 
     if case.load.kind == "bending":
-        paths.append(bending_figure(case, folder))
+        paths.append(bending_figure(case, folder, note))
     lateral = result.cycle_steps if case.load.kind == "saddle" else []
     if lateral:
         fig, ax = plt.subplots(figsize=(6, 4.5))
@@ -218,30 +230,79 @@ def results_figures(case, result, problem) -> list[Path]:
         save_fig(fig, "moment_curvature.png")
 
     if peak is not None and result.peak_w is not None:
-        from .mesh import node_to_block
-
-        mesh = problem.cmesh.mesh
-        u = result.peak_w.reshape(-1, 6)[:, :3]
-        disp = u[node_to_block(problem.V)]  # in the order of the mesh's geometry nodes
-        n_local = mesh.topology.index_map(1).size_local
-        order = np.asarray(mesh.topology.original_cell_index)[:n_local]
-        plotter = offscreen_plotter(window_size=(1600, 700))
-        grid = tubes(mesh, disp, peak.axial[order], "N (N)", radius=1.6e-3)
-        plotter.add_mesh(grid, scalars="N (N)", cmap="coolwarm")
-        plotter.add_text(
-            f"axial force at P = {P_peak / 1e3:.2f} kN (deflection true scale)", font_size=10
-        )
-        plotter.view_vector((0.0, -1.0, 0.0), viewup=(1.0, 0.0, 0.0))
-        plotter.reset_camera()
-        plotter.camera.zoom(2.2)
-        paths.append(save(plotter, folder / "deformed_axial_force.png"))
+        paths.append(deformed_picture(case, result, problem, folder / "deformed_axial_force.png",
+                                      note))  # fmt: skip
     return paths
 
 
-def bending_figure(case, folder) -> Path:
+def incomplete_note(result) -> str:
+    """The line a figure of a run that stopped early carries ("" for a complete run)."""
+    if not result.failure:
+        return ""
+    how = "was interrupted" if result.interrupted else "stopped early (a load step failed)"
+    return f"INCOMPLETE: the run {how} after step {len(result.steps)}; see summary.txt"
+
+
+def deformed_picture(case, result, problem, path, note: str = "") -> Path:
+    """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
+    at the largest load (true scale) and coloured by wire axial force, seen across the load."""
+    from .mesh import node_to_block
+
+    mesh = problem.cmesh.mesh
+    peak, L = result.peak, case.mesh.length
+    u = result.peak_w.reshape(-1, 6)[:, :3]
+    disp = u[node_to_block(problem.V)]  # in the order of the mesh's geometry nodes
+    n_local = mesh.topology.index_map(1).size_local
+    order = np.asarray(mesh.topology.original_cell_index)[:n_local]
+    D = case.cable.outer_diameter
+    half = min(L / 2, max(0.15 * L, 6 * D))
+    outer = len(case.cable.layers) - 1
+    shown = (peak.layer[order] == outer) & (np.abs(peak.z[order] - L / 2) <= half)
+    import pyvista
+
+    cells = pyvista.UnstructuredGrid(*_line_grid(mesh, disp)).extract_cells(np.flatnonzero(shown))
+    cells["N (N)"] = peak.axial[order][shown]
+    grid = (
+        cells.cell_data_to_point_data()
+        .extract_surface(algorithm=None)
+        .tube(radius=case.cable.layers[-1].wire.diameter / 2, n_sides=16)
+    )
+    plotter = offscreen_plotter(window_size=(1800, 650))
+    plotter.add_mesh(
+        grid, scalars="N (N)", cmap="coolwarm",
+        scalar_bar_args={"title": "N (N)\n", "vertical": True, "height": 0.65, "width": 0.05,
+                         "position_x": 0.9, "position_y": 0.15, "title_font_size": 18,
+                         "label_font_size": 14, "fmt": "%.0f", "n_labels": 5},
+    )  # fmt: skip
+    P = result.peak_step.load
+    plotter.add_text(
+        f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
+        f"midspan, at P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
+        "deflection true scale",
+        position="upper_edge", font_size=10,
+    )  # fmt: skip
+    if note:
+        plotter.add_text(note, position="lower_left", font_size=9, color="red")
+    d = np.asarray(case.load.direction, float) * np.sign(P or 1.0)
+    side = np.cross([0.0, 0.0, 1.0], d)
+    plotter.view_vector(side, viewup=-d)
+    plotter.reset_camera()
+    plotter.camera.zoom(1.5)
+    return save(plotter, path)
+
+
+def _line_grid(mesh, displacement):
+    import dolfinx.plot
+
+    topology, cell_types, x = dolfinx.plot.vtk_mesh(mesh)
+    return topology, cell_types, x + np.asarray(displacement).reshape(-1, 3)
+
+
+def bending_figure(case, folder, note: str = "") -> Path:
     """``moment_curvature.png`` of the uniform bending test: the zone's M–κ loop, the section
     moments and end reactions (uniformity), the EI bounds, and the stick–slip law (virgin curve and
-    Masing loop on the measured curvature path, for both friction rules)."""
+    Masing loop on the measured curvature path, for both friction rules). ``note``: a line in red
+    at the bottom (an incomplete run)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -280,7 +341,9 @@ def bending_figure(case, folder) -> Path:
     ax2.set_title("uniformity: five sections of the zone, end reactions")
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=7)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
+    if note:
+        fig.text(0.5, 0.005, note, color="tab:red", ha="center", va="bottom", fontsize=9)
     path = folder / "moment_curvature.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)

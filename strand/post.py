@@ -20,6 +20,7 @@ import ufl  # isort: skip
 from dolfinx import fem  # isort: skip
 
 from .cable import Cable  # isort: skip
+from .geometry import LINE  # isort: skip
 from .model import StrandModel  # isort: skip
 
 __all__ = [
@@ -30,6 +31,8 @@ __all__ = [
     "section_resultants",
     "fibre_model",
     "bending_stiffness_bounds",
+    "SlidingCheck",
+    "sliding_check",
 ]
 
 Array = npt.NDArray[np.float64]
@@ -225,3 +228,62 @@ def saddle_beam_reference(cable: Cable, length: float, tension: float, loads) ->
         )[1:]
         for rule in ("cumulative", "own_tension")
     }
+
+
+@dataclass(frozen=True)
+class SlidingCheck:
+    """How far the small-sliding assumption holds at a state, per interface i|i+1: the largest
+    sliding of a crossing's nodes round the strand (m), the gap error it causes (m), and the
+    interface's mean contact approach (m) over its closed crossings."""
+
+    sliding: Array
+    gap_error: Array
+    approach: Array
+
+    #: the gap error, as a share of the mean approach, beyond which the warning is given
+    LIMIT = 0.25
+
+    def exceeded(self) -> npt.NDArray[np.intp]:
+        """Interfaces whose gap error exceeds ``LIMIT`` × their mean approach."""
+        return np.flatnonzero(self.gap_error > self.LIMIT * self.approach)
+
+    def message(self) -> str:
+        i = int(self.exceeded()[0])
+        return (
+            f"beyond small sliding: crossings of interface {i}|{i + 1} slid round the strand by "
+            f"up to {1e3 * self.sliding[i]:.2f} mm, so the gaps of pairs fixed at t = 0 are off by up to "
+            f"{1e6 * self.gap_error[i]:.2f} µm, more than {100 * self.LIMIT:.0f} % of the mean "
+            f"contact approach there ({1e6 * self.approach[i]:.2f} µm): pair forces are "
+            'unreliable; lower the load, lengthen the span, or use [contact] model = "large"'
+        )
+
+
+def sliding_check(geometry, u_a: Array, u_b: Array, gap: Array) -> SlidingCheck:
+    """The small-sliding check of ``geometry``'s crossing pairs from the displacements (P, 3) of
+    their nodes a and b and their current gaps (P,) (m, negative in contact).
+
+    Pairs are fixed at t = 0: the nodes of a pair face each other only while the wires do not
+    slide far along each other. The outer node of a crossing stays on its layer's cylinder of
+    radius R; when it moves round it by s (relative to the inner node, across the pair's initial
+    normal), it leaves the tangent plane by s²/(2R), and the pair's gap changes by as much
+    although the surfaces did not move apart (for a slide along the wire, s = sinα × the slide
+    and s²/(2R) = κ_wire × slide²/2). Axial sliding leaves the gap as it is; so does any sliding
+    of a line pair (core | layer 1: the core is straight), which is not checked."""
+    p = geometry.pairs
+    layers = geometry.cable.layers
+    radius = np.array([lay.radius for lay in layers])[p.interface + 1]  # the outer wire's helix
+    circumferential = np.cross([0.0, 0.0, 1.0], p.normal)
+    circumferential /= np.linalg.norm(circumferential, axis=1)[:, None]
+    s = np.abs(np.einsum("ij,ij->i", np.asarray(u_b) - np.asarray(u_a), circumferential))
+    error = s**2 / (2 * radius)
+    n = len(layers) - 1
+    sliding, gap_error, approach = np.zeros(n), np.zeros(n), np.full(n, np.inf)
+    for i in range(n):
+        m = (p.interface == i) & (p.kind != LINE)
+        if not m.any():
+            continue
+        sliding[i], gap_error[i] = s[m].max(), error[m].max()
+        closed = m & (gap < 0)
+        if closed.any():
+            approach[i] = -gap[closed].mean()
+    return SlidingCheck(sliding, gap_error, approach)

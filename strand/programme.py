@@ -12,6 +12,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import numpy as np
+
 from .solver import LoadStepper, StepRecord
 
 __all__ = ["Stage", "LoadProgramme", "run_programme", "cycle_stages"]
@@ -48,6 +50,19 @@ class LoadProgramme:
             lengths.append(abs(s.target - start.get(s.parameter, 0.0)))
             start[s.parameter] = s.target
         return lengths
+
+    def time(self, index: int, value: float) -> float:
+        """Programme time at ``value`` of the parameter of stage ``index`` (from 0): the stage's
+        index plus the fraction of its ramp done, so that stage k runs from k to k + 1 (e.g.
+        t = 1 is the end of the tension, 1.5 half-way up the first leg). It grows along the
+        run, whereas a cycle's load goes up and down: the time axis of the field series."""
+        stage = self.stages[index]
+        start = next(
+            (s.target for s in reversed(self.stages[:index]) if s.parameter == stage.parameter),
+            0.0,
+        )
+        span = stage.target - start
+        return index + (1.0 if span == 0 else float(np.clip((value - start) / span, 0.0, 1.0)))
 
     def weights(self) -> list[float]:
         """Share of the whole programme (for progress): stages of other parameters (tensioning)

@@ -27,19 +27,22 @@ __all__ = [
     "FieldSeries",
     "KeyStates",
     "SlipTable",
+    "SmallSlidingMonitor",
 ]
 
 
 @dataclass(frozen=True)
 class RunStep:
     """One converged step of a run: its number (from 1), stage, the parameter it ramps and that
-    parameter's value, Newton's effort (iterations, step cuts before it, wall time s, final
-    residual norm N) and the set-up's measures (``state``)."""
+    parameter's value, the programme time (``LoadProgramme.time``), Newton's effort (iterations,
+    step cuts before it, wall time s, final residual norm N) and the set-up's measures
+    (``state``)."""
 
     number: int
     stage: str
     parameter: str
     load: float
+    time: float
     iterations: int
     cuts: int
     seconds: float
@@ -92,20 +95,23 @@ class _CsvFile:
 
 
 class StepTable(_CsvFile):
-    """``steps.csv``: one row per converged step: number, stage, the set-up's state, Newton's
-    iterations and cuts, wall time (s) and final residual norm (N)."""
+    """``steps.csv``: one row per converged step: number, stage, programme time (the time of
+    the field series), the set-up's state, Newton's iterations and cuts, wall time (s) and final
+    residual norm (N)."""
 
     def __init__(self, folder: Path, state_type):
         super().__init__(
             Path(folder) / "steps.csv",
-            ["step", "stage", *columns(state_type), "iterations", "cuts", "seconds", "residual_N"],
-        )
+            ["step", "stage", "time", *columns(state_type), "iterations", "cuts", "seconds",
+             "residual_N"],
+        )  # fmt: skip
 
     def record(self, ctx: StepContext) -> None:
         s = ctx.step
         self.writer.writerow(
-            [s.number, s.stage, *values(s.state), s.iterations, s.cuts, s.seconds, s.residual]
-        )
+            [s.number, s.stage, f"{s.time:.12g}", *values(s.state), s.iterations, s.cuts,
+             s.seconds, s.residual]
+        )  # fmt: skip
         self.file.flush()
 
 
@@ -152,7 +158,9 @@ class BendingTable(_CsvFile):
 
 
 class FieldSeries:
-    """``fields.xdmf``: u, θ, section forces and the cell ids at every step (ParaView)."""
+    """``fields.xdmf`` (+ ``fields.h5``) and ``fields.bp`` (VTX): u, θ, section forces and the
+    cell ids at every step, at the step's programme time (ParaView's time axis; ``steps.csv``
+    gives the loads at each time)."""
 
     def __init__(self, folder: Path, problem):
         from .output import FieldWriter, cell_function
@@ -162,7 +170,7 @@ class FieldSeries:
         self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids)
 
     def record(self, ctx: StepContext) -> None:
-        self.writer.write(float(ctx.step.number))
+        self.writer.write(ctx.step.time)
 
     def close(self) -> None:
         self.writer.close()
@@ -218,3 +226,32 @@ class SlipTable(_CsvFile):
         load = ctx.problem.setup.get(self.parameter)
         self.writer.writerow([ctx.step.number, load, *fractions])
         self.file.flush()
+
+
+class SmallSlidingMonitor:
+    """Checks at every step that the pairs fixed at t = 0 still face each other
+    (``post.sliding_check``); at the first step where they do not, prints a warning to ``stream``
+    and keeps it in ``warnings`` (for the summary). Not used with large sliding."""
+
+    def __init__(self, model, stream, warnings: list[str]):
+        self.model = model
+        self.stream = stream
+        self.warnings = warnings
+        self.warned = False
+
+    def record(self, ctx: StepContext) -> None:
+        if self.warned:
+            return
+        from .post import sliding_check
+
+        m, p = self.model, self.model.geometry.pairs
+        u = m.nodal[:, :3]
+        check = sliding_check(m.geometry, u[m.i2b[p.a]], u[m.i2b[p.b]], m.pair_results()["gap"])
+        if len(check.exceeded()):
+            self.warned = True
+            text = f"step {ctx.step.number}: {check.message()}"
+            self.warnings.append(text)
+            print(f"strand: warning: {text}", file=self.stream, flush=True)
+
+    def close(self) -> None:
+        pass

@@ -3,11 +3,16 @@
 ``run_case`` builds the strand of a ``Case``, its test set-up and load programme, and runs them
 with per-step recorders that write as the run goes (so that a failed step loses nothing):
 
-* ``fields.xdmf`` — u, θ, section forces and wire/layer ids at every converged step (ParaView);
-* ``steps.csv`` — every converged step: stage, loads, the set-up's measures, Newton iterations;
+* ``fields.xdmf`` (+ ``.h5``) and ``fields.bp`` (VTX) — u, θ, section forces and wire/layer ids at
+  every converged step, at the programme time (stage k runs from t = k to k + 1);
+* ``steps.csv`` — every converged step: stage, time, loads, the set-up's measures, Newton's
+  iterations and final residual;
 * ``axial_forces.csv`` — the axial force of every element (wire, layer, z, φ) at every step;
 * ``moment_curvature.csv`` — the set-up's bending measures at every step of the cycle;
 * PNG figures at the end (``plots.results_figures``) and ``summary.txt``.
+
+The folder is checked before any computing and never mixes two runs (``folder.py``). Ctrl-C
+stops the run at the last converged step, with its summary and figures.
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ import numpy as np
 import strand  # noqa: F401
 
 from .case import Case  # isort: skip
+from .folder import RUN_MARKER, prepare_results_folder  # isort: skip
 from .geometry import LINE, build_geometry  # isort: skip
 from .post import (  # isort: skip
     CellEvaluator,
@@ -41,12 +47,19 @@ from .recorders import (  # isort: skip
     KeyStates,
     RunStep,
     SlipTable,
+    SmallSlidingMonitor,
     StepContext,
     StepTable,
 )
 from .setups.bending import UniformBendingTest  # isort: skip
 from .setups.saddle import SaddleTest  # isort: skip
-from .solver import LoadStepFailure, NewtonOptions, StepRecord  # isort: skip
+from .solver import (  # isort: skip
+    Interrupt,
+    LoadStepFailure,
+    NewtonOptions,
+    RunInterrupted,
+    StepRecord,
+)
 
 __all__ = ["RunResult", "run_case", "summarize", "tension_then_cycle", "setup_and_programme"]
 
@@ -63,7 +76,9 @@ class RunResult:
     beam_reference: dict | None = None
     peak: CellResults | None = None  # at the largest |cycle load| reached
     peak_w: object | None = None  # nodal unknowns at that state
-    failure: str = ""
+    failure: str = ""  # why the run stopped early ("" if it did not)
+    interrupted: bool = False  # stopped by the user (Ctrl-C)
+    warnings: list[str] = field(default_factory=list)  # e.g. beyond small sliding
     seconds: float = 0.0
     setup_seconds: float = 0.0
     #: solver wall times (s): residual/jacobian callbacks, pair terms, insertion, whole solves
@@ -154,11 +169,15 @@ def setup_and_programme(case: Case):
     return setup, tension_then_cycle(case, "lateral")
 
 
-def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) -> RunResult:
-    """Run ``case``; outputs go to ``folder`` (default: the case's output folder)."""
-    folder = Path(folder or case.output.folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "settings.txt").write_text(_settings_text(case))
+def run_case(
+    case: Case, folder: str | Path | None = None, stream=None, overwrite: bool = False
+) -> RunResult:
+    """Run ``case``; outputs go to ``folder`` (default: the case's output folder), which must be
+    new or empty, or hold an earlier run to be replaced with ``overwrite`` (``FolderError``
+    otherwise, raised before any computing)."""
+    stream = stream or sys.stdout
+    folder = prepare_results_folder(folder or case.output.folder, overwrite)
+    (folder / RUN_MARKER).write_text(_settings_text(case))
     result = RunResult(folder)
     t_start = time.perf_counter()
 
@@ -194,6 +213,8 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         SlipTable(folder, geometry, su.measuring_zone, cycle, su.units[cycle]),
         key_states,
     ]
+    if case.contact.model == "small":
+        recorders.append(SmallSlidingMonitor(problem.model, stream, result.warnings))
     if case.output.fields:
         recorders.append(FieldSeries(folder, problem))
     result.setup_seconds = time.perf_counter() - t_start
@@ -207,9 +228,11 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         nonlocal output_seconds
         t_out = time.perf_counter()
         value = problem.setup.get(stage.parameter)
+        index = next(i for i, s in enumerate(programme.stages) if s is stage)
         step = RunStep(
-            len(result.steps) + 1, rec.stage, stage.parameter, value, rec.iterations, rec.cuts,
-            rec.seconds, rec.residuals[-1] if rec.residuals else 0.0, problem.setup.state(),
+            len(result.steps) + 1, rec.stage, stage.parameter, value,
+            programme.time(index, value), rec.iterations, rec.cuts, rec.seconds,
+            rec.residuals[-1] if rec.residuals else 0.0, problem.setup.state(),
         )  # fmt: skip
         result.steps.append(step)
         ctx = StepContext(
@@ -223,11 +246,17 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
         progress.step(stage, value, rec.iterations, rec.cuts, extra)
 
     try:
-        run_programme(problem, programme, on_step)
+        with Interrupt(stream) as interrupt:
+            problem.solver.interrupt = interrupt
+            run_programme(problem, programme, on_step)
+    except RunInterrupted as stop:
+        result.failure, result.interrupted = str(stop), True
+        print(f"strand: stopped: {stop}", file=stream, flush=True)
     except LoadStepFailure as failure:
         result.failure = str(failure)
         print(f"strand: step failed: {failure}", file=stream, flush=True)
     finally:
+        problem.solver.interrupt = None
         for r in recorders:
             r.close()
     result.tensioned, result.peak, result.peak_w = (
@@ -251,14 +280,16 @@ def run_case(case: Case, folder: str | Path | None = None, stream=sys.stdout) ->
 
         for path in results_figures(case, result, problem):
             print(f"figure: {path}", file=stream)
+    problem.solver.destroy()
     return result
 
 
 def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
     """The closing summary: effort, key results, and the tension stage against the fibre model."""
     its = result.iterations
+    outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
     lines = [
-        f"{'FAILED' if result.failure else 'done'}: {len(result.steps)} steps, {its} Newton "
+        f"{outcome}: {len(result.steps)} steps, {its} Newton "
         f"iterations, {result.seconds:.0f} s ({result.seconds / max(its, 1):.2f} s per iteration, "
         f"set-up {result.setup_seconds:.0f} s); results in {result.folder}",
     ]
@@ -301,8 +332,10 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
         lines += saddle_beam_lines(case, result)
     ei_min, ei_max = bending_stiffness_bounds(case.cable)
     lines.append(f"bending stiffness bounds: EI_min {ei_min:.1f} N m², EI_max {ei_max:.0f} N m²")
+    for w in result.warnings:
+        lines.append(f"warning: {w}")
     if result.failure:
-        lines.append(f"failure: {result.failure}")
+        lines.append(f"{'stopped' if result.interrupted else 'failure'}: {result.failure}")
     return "\n".join(lines) + "\n"
 
 

@@ -111,8 +111,12 @@ def test_run_writes_every_output_and_balances_the_section(tmp_path, capsys):
     for name in ("fields.xdmf", "fields.h5", "steps.csv", "axial_forces.csv",
                  "moment_curvature.csv", "summary.txt", "settings.txt"):  # fmt: skip
         assert (out / name).stat().st_size > 0, name
+    assert (out / "fields.bp").is_dir()
     with open(out / "steps.csv") as f:
         steps = list(csv.DictReader(f))
+    times = [float(s["time"]) for s in steps]  # the fields' time axis: one unit per stage
+    assert np.all(np.diff(times) > 0) and times[-1] == 3.0
+    assert [float(s["time"]) for s in steps if s["stage"] == "tension"][-1] == 1.0
     assert float(steps[-1]["lateral_N"]) == 0.0
     assert max(float(s["lateral_N"]) for s in steps) == pytest.approx(300.0)
     assert all(float(s["tension_N"]) == pytest.approx(10e3) for s in steps[2:])
@@ -214,3 +218,37 @@ def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
     for model in ("small", "large"):
         assert (out / model / "steps.csv").stat().st_size > 0
         assert f"model = {model!r}" in (out / model / "settings.txt").read_text()
+
+
+def test_small_sliding_check_against_its_closed_form():
+    """Crossing nodes moved round the strand by s: gap error s²/(2R) (R the outer layer's helix
+    radius); moved along the axis, or all together: none; the warning names the interface."""
+    from strand.geometry import LINE, build_geometry
+    from strand.post import sliding_check
+
+    g = build_geometry(cardinal(), 0.1, 4e-3)
+    p = g.pairs
+    zero, gap = np.zeros((len(p.a), 3)), np.full(len(p.a), -10e-6)
+    around = np.cross([0.0, 0.0, 1.0], p.normal)
+    around /= np.linalg.norm(around, axis=1)[:, None]
+    s = 0.2e-3
+    check = sliding_check(g, zero, s * around, gap)
+    radii = np.array([lay.radius for lay in g.cable.layers])
+    np.testing.assert_allclose(check.gap_error[1:], s**2 / (2 * radii[2:]), rtol=1e-12)
+    assert check.gap_error[0] == 0.0 and np.all(p.kind[p.interface == 0] == LINE)
+    np.testing.assert_allclose(check.approach[1:], 10e-6)
+    assert check.exceeded().tolist() == [1]  # 3.0 µm > 25 % of 10 µm; 2.0 and 1.5 µm are not
+    assert "interface 1|2" in check.message() and "0.20 mm" in check.message()
+    axial = sliding_check(g, zero, np.tile([0.0, 0.0, 1e-3], (len(p.a), 1)), gap)
+    together = sliding_check(g, s * around, s * around, gap)
+    assert np.all(axial.gap_error == 0.0) and np.all(together.gap_error == 0.0)
+
+
+def test_programme_time_runs_one_unit_per_stage():
+    from strand.programme import LoadProgramme, Stage
+
+    stages = (Stage("tension", "tension", 40e3, 1.0, 0.1),
+              *(Stage(f"leg {i}", "lateral", c, 1.0, 0.1) for i, c in enumerate((4e3, 0.0, -4e3))))  # fmt: skip
+    prog = LoadProgramme(stages, "lateral")
+    assert prog.time(0, 10e3) == 0.25 and prog.time(0, 40e3) == 1.0
+    assert prog.time(1, 1e3) == 1.25 and prog.time(2, 1e3) == 2.75 and prog.time(3, -4e3) == 4.0

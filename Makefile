@@ -1,5 +1,5 @@
 # The two commands a new user needs; both set the environment up first (idempotent).
-#   make run [CASE=my_case.toml]   the main job
+#   make run [CASE=my_case.toml]   the main job (replaces that case's earlier results)
 #   make test                      the whole test suite
 PY := .venv/bin/python
 CASE ?=
@@ -9,7 +9,7 @@ setup:
 	@bash scripts/bootstrap.sh
 
 run: setup
-	$(PY) -m strand run $(CASE)
+	$(PY) -m strand run $(CASE) --overwrite
 
 test: setup
 	$(PY) -m pytest

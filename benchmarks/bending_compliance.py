@@ -53,7 +53,7 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
         )
         folder = f"results/benchmark_bending/{key}"
         t0 = time.perf_counter()
-        result = run_case(case, folder, stream=io.StringIO())
+        result = run_case(case, folder, stream=io.StringIO(), overwrite=True)
         seconds = time.perf_counter() - t0
         report = uniform_bending_report(case.cable, case.load.tension, folder)
         moments = {k: (m, law) for k, m, law, _ in report.get("table", [])}

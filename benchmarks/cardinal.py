@@ -23,7 +23,7 @@ def main(case_file: str | None = None) -> None:
     case = load_case(case_file)
     t0 = time.perf_counter()
     log = io.StringIO()
-    result = run_case(case, "results/benchmark_cardinal", stream=log)
+    result = run_case(case, "results/benchmark_cardinal", stream=log, overwrite=True)
     total = time.perf_counter() - t0
     tm = result.timings
     its = max(result.iterations, 1)

@@ -60,7 +60,7 @@ print(case.contact)
 # load, then ramps the loads with Newton's method. One line per converged load step shows the
 # progress; results are written as the run goes.
 
-result = run_case(case, "results/demo_strand_bending")
+result = run_case(case, "results/demo_strand_bending", overwrite=True)
 
 # ## Tension: the fibre model
 #
@@ -92,6 +92,7 @@ for table in (cable["core"], *cable["layer"]):
 slippery = run_case(
     case_from_dict({**settings, "cable": cable}, source="demo, μ = 0.05"),
     "results/demo_strand_bending/low_friction",
+    overwrite=True,
 )
 
 fig, ax = plt.subplots(figsize=(6, 4.5))

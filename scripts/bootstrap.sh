@@ -52,7 +52,9 @@ MSG
   "$py" -m venv "$venv"
 fi
 
-echo "strand setup: installing strand[fenics,dev] into .venv"
+echo "strand setup: installing strand-cables[fenics,dev] into .venv"
+# the distribution was called `strand` before (a name PyPI gives to an unrelated package)
+"$venv/bin/python" -m pip uninstall --quiet --yes strand >/dev/null 2>&1 || true
 pip_quiet() { "$venv/bin/python" -m pip install --quiet "$@" 2>&1 | grep -v "is ignored: it is neither" || true; }
 pip_quiet --upgrade pip
 pip_quiet -e "$root[fenics,dev]"

@@ -186,7 +186,7 @@ def test_strand_mesh_command(tmp_path, capsys):
 
 def test_gmsh_model_comes_in_like_strands_own_mesh():
     """A 1D gmsh model with a physical group per wire gives the same mesh, tags and pair nodes."""
-    import gmsh
+    gmsh = pytest.importorskip("gmsh")  # the optional `gmsh` extra
 
     from strand.mesh import geometry_to_gmsh, input_to_block, mesh_from_gmsh
 

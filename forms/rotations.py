@@ -8,7 +8,7 @@ A rotation is described by its rotation vector ``theta`` (axis times angle, rad)
 
 The coefficients sin x/x, (1 − cos x)/x², (x − sin x)/x³ are 0/0 at θ = 0, where every computation
 starts; below ``SMALL_ANGLE`` they are replaced by their Taylor series in x² = θ·θ, so that values and
-all derivatives used by Newton are exact to round-off. The parametrisation is singular at |θ| = 2π
+all derivatives used by Newton are exact to round-off. The parametrisation is singular at ‖θ‖ = 2π
 only (T is then rank-deficient), far beyond what a cable sees.
 """
 
@@ -43,7 +43,7 @@ def axial(A: ufl.core.expr.Expr) -> ufl.core.expr.Expr:
 
 
 def rotation_coefficients(theta: ufl.core.expr.Expr):
-    """(a, b, c) = (sin x/x, (1 − cos x)/x², (x − sin x)/x³) with x = |θ|, safe at θ = 0."""
+    """(a, b, c) = (sin x/x, (1 − cos x)/x², (x − sin x)/x³) with x = ‖θ‖, safe at θ = 0."""
     x2 = ufl.dot(theta, theta)
     x = ufl.sqrt(x2)
     small = ufl.lt(x2, SMALL_ANGLE**2)

@@ -152,7 +152,7 @@ class StickSlipLaw:
 
     @property
     def full_slip(self) -> Array:
-        """κ_t = T (e^{λπ/2} − 1)/(K r), λ = f/T, per helical layer (physics.md's whole quarter
+        """κ_t = T (e^{λπ/2} − 1)/(K r), λ = f/T, per helical layer (docs/theory.md §5.4, whole quarter
         turn slipping), 1/m."""
         return np.array([l.T * (np.exp(l.f / l.T * np.pi / 2) - 1) / (l.K * l.r)
                          for l in self.layers])  # fmt: skip
@@ -215,7 +215,7 @@ class StickSlipLaw:
         return self.ei_min * k + self.layer_moments(k).sum(axis=0)
 
     def piecewise(self, kappa: npt.ArrayLike) -> Array:
-        """The linearised bending law EI_min κ + Σ min(EI_s,i |κ|, M_slip,i) sign κ, N m."""
+        """The linearised bending law EI_min κ + Σ min(EI_s,i abs(κ), M_slip,i) sign κ, N m."""
         k = np.asarray(kappa, dtype=float)
         caps = [2 * l.n / np.pi * l.r * np.cos(l.alpha) * l.f for l in self.layers]
         terms = [
@@ -344,7 +344,7 @@ def costello_stiffness(cable: Cable, step: float = 1e-7) -> Array:
     """Costello's linear axial–torsional stiffness [[∂F/∂ε, ∂F/∂θ′], [∂M/∂ε, ∂M/∂θ′]] of a straight
     strand (N, N m, N m, N m²), θ′ the twist rate (rad/m) positive about the strand axis +z.
 
-    Per helical layer (physics.md E 3.3; helix radius r fixed, no Poisson contraction; h = ±1 the
+    Per helical layer (docs/theory.md §5.2; helix radius r fixed, no Poisson contraction; h = ±1 the
     hand): tan α′ = (tan α + h r θ′)/(1 + ε), ξ = √((1 + ε)² + (tan α + h r θ′)²) cos α − 1,
     κ′ = sin²α/r, τ = sin α cos α/r; F = E_cA_cε + Σ n(T cos α + N′ sin α) and
     M = G_cJ_cθ′ + Σ n h(H cos α + G′ sin α + T r sin α − N′ r cos α). Central differences of step

@@ -1,7 +1,7 @@
 """Case files (TOML): the cable, its mesh, contact, loads, load steps, solver and outputs.
 
 Every setting has a default; a case file only lists what it changes. The default case is the seed
-paper's test (physics.md B): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +4.3 → 0 → −4.3 → 0 kN::
+paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +4.3 → 0 → −4.3 → 0 kN::
 
     cable = "cardinal"        # built-in name, a cable TOML (relative to the case), or a [cable] table
 

@@ -1,5 +1,15 @@
-"""strand's command line.
+"""strand's command line: ``strand run``, ``strand mesh`` and ``strand compare`` (see ``USAGE``,
+printed by ``strand --help``)."""
 
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+import numpy as np
+
+USAGE = """\
 strand run  [case.toml]   the main job: tension, then the lateral saddle cycle (default: Cardinal,
                           the seed paper's test); writes fields, CSV tables and figures
 strand mesh [case.toml]   build the strand mesh and contact pairs, print the table, draw them
@@ -11,14 +21,6 @@ strand compare [case.toml]
 Exit codes: 0 done, 2 bad input (one line on stderr, nothing computed), 3 a load step failed,
 130 interrupted (Ctrl-C); a stopped run keeps every step written so far, with its summary.
 """
-
-from __future__ import annotations
-
-import argparse
-import sys
-import time
-
-import numpy as np
 
 
 def mesh_table(geometry) -> str:
@@ -103,7 +105,7 @@ def _compare(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
-        prog="strand", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+        prog="strand", description=USAGE, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     from . import __version__
 

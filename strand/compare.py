@@ -26,7 +26,7 @@ SECTORS = 8
 
 
 def force_differences(a: CellResults, b: CellResults, n_layers: int) -> list[dict]:
-    """Per layer: the range of a's axial forces (N), and max |N_b − N_a| relative to it, over the
+    """Per layer: the range of a's axial forces (N), and max abs(N_b − N_a) relative to it, over the
     layer and per 45° sector of φ (NaN for the core, which has no sector)."""
     rows = []
     for layer in range(n_layers):

@@ -1,7 +1,7 @@
 """Post-processing of a strand state: wire axial forces, angular sectors, midspan moment–curvature,
 and the analytical references they are compared with (fibre model, bending-stiffness bounds).
 
-Conventions (physics.md B). The lateral load acts along ``direction`` d; the neutral axis of bending
+Conventions (docs/theory.md §4). The lateral load acts along ``direction`` d; the neutral axis of bending
 is s = e_z × d. A wire's angle φ is measured from s towards d, so φ = +90° is the fibre stretched
 at midspan by a positive load. Moments and curvatures are reported positive for a positive load.
 Units: m, N, N m, 1/m.
@@ -121,7 +121,7 @@ def section_resultants(model: StrandModel, cells: CellResults, z: float) -> tupl
 
 def fibre_model(cable: Cable, tension: float) -> dict:
     """Axial stiffness (N), strain and wire forces (N) per layer for ends held against rotation
-    (physics.md E 3.2: ε_w = ε cos²α, F = Σ n E A cos³α ε)."""
+    (docs/theory.md §5.1: ε_w = ε cos²α, F = Σ n E A cos³α ε)."""
     k = 0.0
     per_layer = []
     for lay in cable.layers:
@@ -135,7 +135,7 @@ def fibre_model(cable: Cable, tension: float) -> dict:
 
 def bending_stiffness_bounds(cable: Cable) -> tuple[float, float]:
     """(EI_min, EI_max) in N m²: Σ n EI of free-slipping wires, plus Σ (n/2) E A r² cos³α when
-    every layer sticks (physics.md C(b))."""
+    every layer sticks (docs/theory.md §5.3)."""
     ei_min = sum(
         max(lay.wires, 1) * lay.wire.E * np.pi * lay.wire.diameter**4 / 64 for lay in cable.layers
     )

@@ -43,7 +43,7 @@ class LoadProgramme:
     cycle_parameter: str
 
     def path_lengths(self) -> list[float]:
-        """|target − start| of every stage, every parameter starting at 0."""
+        """The distance abs(target − start) of every stage, every parameter starting at 0."""
         start: dict[str, float] = {}
         lengths = []
         for s in self.stages:

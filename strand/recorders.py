@@ -178,7 +178,7 @@ class FieldSeries:
 
 class KeyStates:
     """Keeps the cell results and contact pair results of the tensioned state (last step before
-    the cycle), and the cell results of the largest |cycle load| reached, with the nodal unknowns
+    the cycle), and the cell results of the largest abs(cycle load) reached, with the nodal unknowns
     there (for summary and figures)."""
 
     def __init__(self):

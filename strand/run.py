@@ -74,7 +74,7 @@ class RunResult:
     tensioned_pairs: dict | None = None  # contact pair results there (``pair_results``)
     #: saddle runs: the analytical beam's deflections (m) at every cycle step, per friction rule
     beam_reference: dict | None = None
-    peak: CellResults | None = None  # at the largest |cycle load| reached
+    peak: CellResults | None = None  # at the largest abs(cycle load) reached
     peak_w: object | None = None  # nodal unknowns at that state
     failure: str = ""  # why the run stopped early ("" if it did not)
     interrupted: bool = False  # stopped by the user (Ctrl-C)
@@ -96,7 +96,7 @@ class RunResult:
 
     @property
     def peak_step(self) -> RunStep | None:
-        """The cycle step at the largest |load| (None before any)."""
+        """The cycle step at the largest abs(load) (None before any)."""
         return max(self.cycle_steps, key=lambda s: abs(s.load), default=None)
 
     @property

@@ -134,7 +134,7 @@ def test_full_stick_with_crossings_is_limited_by_the_beams_not_the_contacts():
 
 
 def test_stick_slip_law_reproduces_the_reference_numbers():
-    """Cardinal at 40 kN (physics notes C(b), C(d)): EI_min variants, stick stiffness per layer,
+    """Cardinal at 40 kN (docs/theory.md §5.3, §5.4, worked out for Cardinal): EI_min variants, stick stiffness per layer,
     slip onset and slip moments with both friction rules."""
     c = cardinal()
     assert ei_min(c, "EPRI") == pytest.approx(28.81, abs=0.01)
@@ -162,7 +162,7 @@ def test_stick_slip_law_reproduces_the_reference_numbers():
 
 def test_tensioned_beam_matches_its_closed_form_and_the_reference_deflections():
     """Linear law: the shooting solution equals P/(2T)[a − (2/k) tanh(ka/2)]; with the stick–slip
-    law, the virgin deflections of the seed test (physics notes C(e)) within 0.1 mm."""
+    law, the virgin deflections of the seed test (docs/theory.md §5.5) within 0.1 mm."""
     for EI in (28.81, 1800.0):
         beam = TensionedBeam(1.0, 40e3, lambda M, EI=EI: M / EI)
         assert beam.deflection(4300.0) == pytest.approx(

@@ -359,7 +359,7 @@ def seven_wire(lay_angle=6.06, length=0.2, h_max=4e-3):
 
 
 def test_helix_on_core_line_load():
-    """Contact line load of a tensioned helix on its core: X = T sin²α / r (physics.md 3.8.1)."""
+    """Contact line load of a tensioned helix on its core: X = T sin²α / r (docs/theory.md §5.6)."""
     geometry = seven_wire(lay_angle=12.0)
     problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-4))
     problem.setup.set_tension(20e3)

@@ -90,7 +90,7 @@ def test_bad_settings_are_named_before_computing(tmp_path, capsys, text, message
 
 
 def test_fibre_model_and_stiffness_bounds_match_the_reference_numbers():
-    """physics.md C(b), C(c): EA = 39.44 MN, ε(40 kN) = 1014 µε, wire forces 1866/1582/546/547/541 N,
+    """docs/theory.md §5.1, §5.3 worked out for Cardinal: EA = 39.44 MN, ε(40 kN) = 1014 µε, wire forces 1866/1582/546/547/541 N,
     EI_min = 28.81 N m², EI_max = 1800 N m²."""
     ref = fibre_model(cardinal(), 40e3)
     assert ref["EA"] == pytest.approx(39.44e6, rel=2e-3)

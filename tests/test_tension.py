@@ -1,5 +1,5 @@
 """Tension alone (issue 11): a 1+6 strand with ends held against rotation against Costello's thin-rod
-theory (physics.md E 3.3), which assumes rigid contacts: axial strain and end torque."""
+theory (docs/theory.md §5.2), which assumes rigid contacts: axial strain and end torque."""
 
 from __future__ import annotations
 
@@ -47,7 +47,7 @@ def tensioned(cable, contact: ContactSettings):
 def test_costello_stiffness_of_a_seven_wire_strand():
     """The thin-rod coupling terms: wire bending and torsion roughly double the torsional stiffness
     of the fibre model (Σ nEA r² sin²α cos α + G_cJ_c) and leave the axial one within 0.1 %; the
-    matrix is unsymmetric by ~5 % (exact kinematics with Love's resultants, physics.md E 3.3)."""
+    matrix is unsymmetric by ~5 % (exact kinematics with Love's resultants, docs/theory.md §5.2)."""
     cable = seven_wire(11.8)
     C = costello_stiffness(cable)
     core, lay = cable.layers

@@ -10,10 +10,10 @@ A pair joins node a (inner wire) and node b (outer wire). Its gap is
     the initial radial normal n₀: g is linear in the translations. Robust, but it gives the
     circumferential modes of the strand a spurious stiffness and its gaps drift in bending.
 ``neighbour``
-    depends on translations only. Crossings: n = s (c_a × c_b)/|c_a × c_b| with the chords
+    depends on translations only. Crossings: n = s (c_a × c_b)/‖c_a × c_b‖ with the chords
     c = x_{i+1} − x_{i−1} of each wire around the pair (stencil [a, b, a−, a+, b−, b+]).
-    Line pairs (core | layer 1): n = P_c(x_b − x_a)/|P_c(x_b − x_a)|, the centre-to-centre
-    direction orthogonal to the core chord c (stencil [a, b, a−, a+]); then g = |P_c d| − g₀.
+    Line pairs (core | layer 1): n = P_c(x_b − x_a)/‖P_c(x_b − x_a)‖, the centre-to-centre
+    direction orthogonal to the core chord c (stencil [a, b, a−, a+]); then g = ‖P_c d‖ − g₀.
 ``director``
     the seed paper's normal, from the nodal rotations: the tangents t = R(θ) t₀ replace the chords
     (stencil [a, b]); it couples the gap to the rotations.
@@ -74,7 +74,7 @@ def _series(x2, first: int):
 
 
 def _rotation_coefficients(theta):
-    """(sin x/x, (1 − cos x)/x², (x − sin x)/x³), x = |θ|, complex-analytic and safe at 0."""
+    """(sin x/x, (1 − cos x)/x², (x − sin x)/x³), x = ‖θ‖, complex-analytic and safe at 0."""
     x2 = _dot(theta, theta)
     small = np.real(x2) < _SMALL_ANGLE2
     x2_small = np.where(small, x2, 0.0)  # the series only where it is used (no overflow)
@@ -144,7 +144,7 @@ def _cross_normal_gradient(d, ca, cb, s):
 
 
 def _projected_normal_gradient(d, c):
-    """g = |P_c d| with P_c = I − c⊗c/c·c: returns n = P_c d/|P_c d|, ∂g/∂d and ∂g/∂c."""
+    """g = ‖P_c d‖ with P_c = I − c⊗c/c·c: returns n = P_c d/‖P_c d‖, ∂g/∂d and ∂g/∂c."""
     cc = _dot(c, c)
     dc = _dot(d, c)
     e = d - (dc / cc)[..., None] * c

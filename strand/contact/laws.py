@@ -13,8 +13,8 @@ and dp/dg; a pair counts as closed in the tangent for g ≤ 0 (pairs start at g 
 Friction laws are Coulomb with an elastic stick branch and a radial return onto the cone. The stick
 stiffness K_T is evaluated with the normal force P₀ at the start of the step and frozen over the
 step (so that Newton stays quadratic); the trial traction t_tr = P_n t_old + K_T Δg_T (P_n = I − n⊗n
-re-projects the stored traction onto the current tangent plane) is kept when |t_tr| ≤ μp (stick),
-else scaled back to μp t_tr/|t_tr| (slip). The laws differ in K_T only:
+re-projects the stored traction onto the current tangent plane) is kept when ‖t_tr‖ ≤ μp (stick),
+else scaled back to μp t_tr/‖t_tr‖ (slip). The laws differ in K_T only:
 
 * ``ElasticSlip``: K_T = μP₀/g_lim, friction reaches μP after a slip g_lim (the seed paper's);
 * ``Mindlin``: K_T = k_T/k_N × dp/dδ(P₀), Mindlin's initial tangential stiffness of the Hertz

@@ -232,58 +232,61 @@ def saddle_beam_reference(cable: Cable, length: float, tension: float, loads) ->
 
 @dataclass(frozen=True)
 class SlidingCheck:
-    """How far the small-sliding assumption holds at a state, per interface i|i+1: the largest
-    sliding of a crossing's nodes round the strand (m), the gap error it causes (m), and the
-    interface's mean contact approach (m) over its closed crossings."""
+    """How far the small-sliding assumption holds at a state, per interface i|i+1 (crossings):
+    the largest drift (m) of a pair's gap caused by sliding, the share of its closed pairs whose
+    drift exceeds ``LIMIT`` × the interface's mean contact approach (m, over its closed pairs),
+    and the z (m) of the largest drift."""
 
-    sliding: Array
-    gap_error: Array
+    drift: Array
+    share: Array
     approach: Array
+    z: Array
 
-    #: the gap error, as a share of the mean approach, beyond which the warning is given
+    #: the drift, as a share of the mean approach, beyond which a pair's force is unreliable
     LIMIT = 0.25
 
     def exceeded(self) -> npt.NDArray[np.intp]:
-        """Interfaces whose gap error exceeds ``LIMIT`` × their mean approach."""
-        return np.flatnonzero(self.gap_error > self.LIMIT * self.approach)
+        """Interfaces with at least one pair beyond the limit."""
+        return np.flatnonzero(self.share > 0)
 
     def message(self) -> str:
         i = int(self.exceeded()[0])
         return (
-            f"beyond small sliding: crossings of interface {i}|{i + 1} slid round the strand by "
-            f"up to {1e3 * self.sliding[i]:.2f} mm, so the gaps of pairs fixed at t = 0 are off by up to "
-            f"{1e6 * self.gap_error[i]:.2f} µm, more than {100 * self.LIMIT:.0f} % of the mean "
-            f"contact approach there ({1e6 * self.approach[i]:.2f} µm): pair forces are "
-            'unreliable; lower the load, lengthen the span, or use [contact] model = "large"'
+            f"beyond small sliding at interface {i}|{i + 1}: the wires slid round the strand so "
+            f"far that the gaps of {100 * self.share[i]:.1f} % of its pairs (fixed at t = 0) "
+            f"drift by more than {100 * self.LIMIT:.0f} % of the mean contact approach "
+            f"({1e6 * self.approach[i]:.2f} µm), by up to {1e6 * self.drift[i]:.2f} µm at "
+            f"z = {self.z[i]:.3f} m: their forces are unreliable (docs/theory.md §3.2; "
+            '[contact] model = "large" re-projects the pairs)'
         )
 
 
-def sliding_check(geometry, u_a: Array, u_b: Array, gap: Array) -> SlidingCheck:
-    """The small-sliding check of ``geometry``'s crossing pairs from the displacements (P, 3) of
-    their nodes a and b and their current gaps (P,) (m, negative in contact).
+def sliding_check(geometry, positions: Array, gap: Array) -> SlidingCheck:
+    """The small-sliding check of ``geometry``'s crossings from the node ``positions`` (N, 3)
+    and the pairs' current gaps (P,) (m, negative in contact).
 
-    Pairs are fixed at t = 0: the nodes of a pair face each other only while the wires do not
-    slide far along each other. The outer node of a crossing stays on its layer's cylinder of
-    radius R; when it moves round it by s (relative to the inner node, across the pair's initial
-    normal), it leaves the tangent plane by s²/(2R), and the pair's gap changes by as much
-    although the surfaces did not move apart (for a slide along the wire, s = sinα × the slide
-    and s²/(2R) = κ_wire × slide²/2). Axial sliding leaves the gap as it is; so does any sliding
-    of a line pair (core | layer 1: the core is straight), which is not checked."""
+    Pairs are fixed at t = 0. The outer node of a crossing stays on its layer's cylinder of
+    radius R; when it moves round the strand by s relative to the inner node (across the pair's
+    initial normal), the pair's gap drifts by s²/(2R) although the surfaces did not move apart
+    (docs/theory.md §3.2; a test checks it against the element's own gap). Axial sliding leaves
+    the gap as it is; so does any sliding of a line pair on the straight core (not checked)."""
     p = geometry.pairs
-    layers = geometry.cable.layers
-    radius = np.array([lay.radius for lay in layers])[p.interface + 1]  # the outer wire's helix
-    circumferential = np.cross([0.0, 0.0, 1.0], p.normal)
-    circumferential /= np.linalg.norm(circumferential, axis=1)[:, None]
-    s = np.abs(np.einsum("ij,ij->i", np.asarray(u_b) - np.asarray(u_a), circumferential))
-    error = s**2 / (2 * radius)
-    n = len(layers) - 1
-    sliding, gap_error, approach = np.zeros(n), np.zeros(n), np.full(n, np.inf)
+    radius = np.array([lay.radius for lay in geometry.cable.layers])[p.interface + 1]
+    around = np.cross([0.0, 0.0, 1.0], p.normal)
+    around /= np.linalg.norm(around, axis=1)[:, None]
+    moved = positions - geometry.points
+    s = np.einsum("ij,ij->i", moved[p.b] - moved[p.a], around)
+    drift = s**2 / (2 * radius)
+    n = len(geometry.cable.layers) - 1
+    out = {k: np.zeros(n) for k in ("drift", "share", "z")}
+    out["approach"] = np.full(n, np.inf)
     for i in range(n):
-        m = (p.interface == i) & (p.kind != LINE)
-        if not m.any():
+        closed = np.flatnonzero((p.interface == i) & (p.kind != LINE) & (gap < 0))
+        if not len(closed):
             continue
-        sliding[i], gap_error[i] = s[m].max(), error[m].max()
-        closed = m & (gap < 0)
-        if closed.any():
-            approach[i] = -gap[closed].mean()
-    return SlidingCheck(sliding, gap_error, approach)
+        worst = closed[np.argmax(drift[closed])]
+        approach = -gap[closed].mean()
+        out["drift"][i], out["z"][i] = drift[worst], geometry.points[p.a[worst], 2]
+        out["approach"][i] = approach
+        out["share"][i] = np.mean(drift[closed] > SlidingCheck.LIMIT * approach)
+    return SlidingCheck(**out)

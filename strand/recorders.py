@@ -244,9 +244,8 @@ class SmallSlidingMonitor:
             return
         from .post import sliding_check
 
-        m, p = self.model, self.model.geometry.pairs
-        u = m.nodal[:, :3]
-        check = sliding_check(m.geometry, u[m.i2b[p.a]], u[m.i2b[p.b]], m.pair_results()["gap"])
+        m = self.model
+        check = sliding_check(m.geometry, m.positions(), m.pair_results()["gap"])
         if len(check.exceeded()):
             self.warned = True
             text = f"step {ctx.step.number}: {check.message()}"

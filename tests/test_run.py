@@ -12,6 +12,8 @@ import strand  # noqa: F401
 from strand.cable import cardinal  # isort: skip
 from strand.case import CaseError, load_case  # isort: skip
 from strand.cli import main  # isort: skip
+from strand.contact.element import ContactGroup  # isort: skip
+from strand.contact.laws import PenaltyLaw  # isort: skip
 from strand.post import bending_stiffness_bounds, fibre_model  # isort: skip
 
 SEVEN_WIRE = """
@@ -221,27 +223,71 @@ def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
 
 
 def test_small_sliding_check_against_its_closed_form():
-    """Crossing nodes moved round the strand by s: gap error s²/(2R) (R the outer layer's helix
+    """Crossing nodes moved round the strand by s: gap drift s²/(2R) (R the outer layer's helix
     radius); moved along the axis, or all together: none; the warning names the interface."""
-    from strand.geometry import LINE, build_geometry
+    from strand.geometry import build_geometry
     from strand.post import sliding_check
 
     g = build_geometry(cardinal(), 0.1, 4e-3)
     p = g.pairs
-    zero, gap = np.zeros((len(p.a), 3)), np.full(len(p.a), -10e-6)
+    gap = np.full(len(p.a), -10e-6)
     around = np.cross([0.0, 0.0, 1.0], p.normal)
     around /= np.linalg.norm(around, axis=1)[:, None]
     s = 0.2e-3
-    check = sliding_check(g, zero, s * around, gap)
     radii = np.array([lay.radius for lay in g.cable.layers])
-    np.testing.assert_allclose(check.gap_error[1:], s**2 / (2 * radii[2:]), rtol=1e-12)
-    assert check.gap_error[0] == 0.0 and np.all(p.kind[p.interface == 0] == LINE)
-    np.testing.assert_allclose(check.approach[1:], 10e-6)
-    assert check.exceeded().tolist() == [1]  # 3.0 µm > 25 % of 10 µm; 2.0 and 1.5 µm are not
-    assert "interface 1|2" in check.message() and "0.20 mm" in check.message()
-    axial = sliding_check(g, zero, np.tile([0.0, 0.0, 1e-3], (len(p.a), 1)), gap)
-    together = sliding_check(g, s * around, s * around, gap)
-    assert np.all(axial.gap_error == 0.0) and np.all(together.gap_error == 0.0)
+    for i in (1, 2, 3):  # the outer nodes of one interface's crossings moved round by s
+        m = p.interface == i
+        x = g.points.copy()
+        x[p.b[m]] += s * around[m]
+        check = sliding_check(g, x, gap)
+        assert check.drift[i] == pytest.approx(s**2 / (2 * radii[i + 1]), rel=1e-12)
+        assert check.drift[0] == 0.0  # core | layer 1: line pairs, not checked
+        np.testing.assert_allclose(check.approach[1:], 10e-6)
+        # 3.0 µm at 1|2 exceeds 25 % of 10 µm; 2.0 µm (2|3) and 1.5 µm (3|4) do not
+        assert check.exceeded().tolist() == ([1] if i == 1 else [])
+    assert check.share[3] == 0.0 and check.z[3] > 0
+    x = g.points.copy()
+    x[p.b[p.interface == 1]] += s * around[p.interface == 1]
+    check = sliding_check(g, x, gap)
+    assert check.share[1] == 1.0 and "interface 1|2" in check.message()
+    axial = g.points + np.where(np.isin(np.arange(len(x)), p.b)[:, None], [0, 0, 1e-3], 0.0)
+    assert np.all(sliding_check(g, axial, gap).drift == 0.0)
+    assert np.all(sliding_check(g, g.points + 1e-3, gap).drift < 1e-20)
+
+
+@pytest.mark.parametrize("interface", [1, 2, 3])
+def test_small_sliding_drift_is_the_elements_own_gap_drift(interface):
+    """The outer wire of a Cardinal crossing slid along its helix by 1 mm (its node moved and
+    turned with the helix): the contact element's gap (director normal) drifts by 70–100 % of
+    s²/(2R), s the slide round the strand: the estimate the small-sliding check uses is an upper
+    bound within 30 % (measured: 78 / 91 / 93 % at 1|2 / 2|3 / 3|4)."""
+    from strand.geometry import build_geometry
+
+    g = build_geometry(cardinal(), 0.4, 4e-3)
+    p, layers = g.pairs, g.cable.layers
+    k = np.flatnonzero(p.interface == interface)[100]
+    inner, outer = layers[interface], layers[interface + 1]
+
+    def tangent(lay, x):
+        phi, r, w = np.arctan2(x[1], x[0]), lay.radius, lay.angular_rate
+        t = np.array([-r * w * np.sin(phi), r * w * np.cos(phi), 1.0])
+        return t / np.linalg.norm(t)
+
+    t0 = np.array([[tangent(inner, g.points[p.a[k]]), tangent(outer, g.points[p.b[k]])]])
+    group = ContactGroup(
+        np.array([[0, 1]]), g.points[[p.a[k], p.b[k]]][None], False, [p.radius_a[k]],
+        [p.radius_b[k]], p.normal[k][None], PenaltyLaw(np.array([5e7])), None, "director", t0,
+    )  # fmt: skip
+    dz = 1e-3 * np.cos(outer.alpha)
+    dphi = outer.angular_rate * dz
+    c, s = np.cos(dphi), np.sin(dphi)
+    w = np.zeros((2, 6))
+    w[1, :3] = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ g.points[p.b[k]] + [0, 0, dz]
+    w[1, :3] -= g.points[p.b[k]]
+    w[1, 5] = dphi
+    group.evaluate(w, False)
+    drift = (outer.radius * dphi) ** 2 / (2 * outer.radius)
+    assert 0.7 * drift < group.state.gap[0] <= drift
 
 
 def test_programme_time_runs_one_unit_per_stage():

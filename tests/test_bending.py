@@ -83,6 +83,7 @@ def seven_wire(friction: float):
     return type(cable)("1+6", [replace(lay, friction=friction) for lay in cable.layers[:2]])
 
 
+@pytest.mark.slow
 def test_frictionless_slope_is_the_wires_own_bending():
     """Frictionless 1+6+12 (objective ``director`` normal), 0.9 m so that the 0.3 m zone holds 1.5
     lay lengths, T = 1 kN: M/κ within 5 % of EI_min, taken as the Costello-type Σ nEI cosα

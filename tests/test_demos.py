@@ -7,9 +7,11 @@ from pathlib import Path
 import pytest
 
 DEMOS = sorted((Path(__file__).parents[1] / "demos").glob("demo_*.py"))
+SLOW = {"demo_strand_bending"}  # two runs of 0.4 m of Cardinal: minutes
+CASES = [pytest.param(d, marks=pytest.mark.slow) if d.stem in SLOW else d for d in DEMOS]
 
 
-@pytest.mark.parametrize("demo", DEMOS, ids=[d.stem for d in DEMOS])
+@pytest.mark.parametrize("demo", CASES, ids=[d.stem for d in DEMOS])
 def test_demo_runs(demo, tmp_path):
     run = subprocess.run(
         [sys.executable, str(demo)], cwd=tmp_path, capture_output=True, text=True, timeout=600

@@ -43,7 +43,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
 
     [output]
     folder = "results/cardinal"    # default for a case file: results/<file name without .toml>
-    fields = true             # XDMF time series for ParaView
+    fields = true             # field time series: XDMF (+ HDF5) for ParaView and meshio
+    vtx = true                # with fields: also VTX (ADIOS2 .bp; as large again, ~250 MB here)
     plots = true              # PNG figures at the end
 
 Unknown keys and bad values are errors naming the file and the key, raised before any computing.
@@ -116,6 +117,7 @@ class StepSettings:
 class OutputSettings:
     folder: str = "results/cardinal"
     fields: bool = True
+    vtx: bool = True
     plots: bool = True
 
 

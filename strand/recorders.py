@@ -158,16 +158,16 @@ class BendingTable(_CsvFile):
 
 
 class FieldSeries:
-    """``fields.xdmf`` (+ ``fields.h5``) and ``fields.bp`` (VTX): u, θ, section forces and the
+    """``fields.xdmf`` (+ ``fields.h5``) and, with ``vtx``, ``fields.bp``: u, θ, section forces and the
     cell ids at every step, at the step's programme time (ParaView's time axis; ``steps.csv``
     gives the loads at each time)."""
 
-    def __init__(self, folder: Path, problem):
+    def __init__(self, folder: Path, problem, vtx: bool = True):
         from .output import FieldWriter, cell_function
 
         mesh, g = problem.cmesh.mesh, problem.geometry
         ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]
-        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids)
+        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids, vtx=vtx)
 
     def record(self, ctx: StepContext) -> None:
         self.writer.write(ctx.step.time)

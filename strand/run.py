@@ -216,7 +216,7 @@ def run_case(
     if case.contact.model == "small":
         recorders.append(SmallSlidingMonitor(problem.model, stream, result.warnings))
     if case.output.fields:
-        recorders.append(FieldSeries(folder, problem))
+        recorders.append(FieldSeries(folder, problem, vtx=case.output.vtx))
     result.setup_seconds = time.perf_counter() - t_start
     progress = _Progress(
         programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3), "curvature": ("1/m", 1.0)},

@@ -110,6 +110,10 @@ def test_a_second_run_into_a_folder_is_refused_and_overwrite_replaces_it(tmp_pat
     second = {p.name for p in out.iterdir()}
     assert not any(n.startswith("fields") or n.endswith(".png") for n in second), second
     assert "fields = False" in (out / "settings.txt").read_text()
+    no_vtx = tmp_path / "no_vtx"
+    assert main(["run", str(case), "--out", str(no_vtx), "--set", "output.vtx=false",
+                 "--set", "output.plots=false", "--set", "load.cycle=[1.0]"]) == 0  # fmt: skip
+    assert (no_vtx / "fields.xdmf").exists() and not (no_vtx / "fields.bp").exists()
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "notes.txt").write_text("not a run")
     assert main(["run", str(case), "--out", str(tmp_path / "mine"), "--overwrite"]) == 2

@@ -19,23 +19,29 @@ def offscreen_plotter(**kwargs):
     return pyvista.Plotter(off_screen=True, **kwargs)
 
 
-def tubes(V_or_mesh, displacement=None, scalars=None, name="value", radius=1e-3, n_sides=16):
+def tubes(
+    V_or_mesh, displacement=None, scalars=None, name="value", radius=1e-3, n_sides=16, cells=None
+):
     """Tubes of ``radius`` (m) around the (displaced) centrelines of a 1D mesh.
 
     ``displacement`` is an (n_nodes, 3) array in the order of ``dolfinx.plot.vtk_mesh`` of the
-    mesh (its geometry nodes) and ``scalars`` a per-cell or per-node array to colour by.
+    mesh (its geometry nodes) and ``scalars`` a per-cell or per-node array to colour by;
+    ``cells`` (local cell indices) keeps only those cells.
     """
     import dolfinx.plot
     import pyvista
 
     topology, cell_types, x = dolfinx.plot.vtk_mesh(V_or_mesh)
     grid = pyvista.UnstructuredGrid(topology, cell_types, x.copy())
+    per_cell = scalars is not None and len(scalars) == grid.n_cells
     if displacement is not None:
         grid.points = grid.points + np.asarray(displacement).reshape(-1, 3)
     if scalars is not None:
         grid[name] = np.asarray(scalars)
-        if len(scalars) == grid.n_cells:
-            grid = grid.cell_data_to_point_data()
+    if cells is not None:
+        grid = grid.extract_cells(cells)
+    if per_cell:
+        grid = grid.cell_data_to_point_data()
     return grid.extract_surface(algorithm=None).tube(radius=radius, n_sides=n_sides)
 
 
@@ -258,15 +264,8 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     half = min(L / 2, max(0.15 * L, 6 * D))
     outer = len(case.cable.layers) - 1
     shown = (peak.layer[order] == outer) & (np.abs(peak.z[order] - L / 2) <= half)
-    import pyvista
-
-    cells = pyvista.UnstructuredGrid(*_line_grid(mesh, disp)).extract_cells(np.flatnonzero(shown))
-    cells["N (N)"] = peak.axial[order][shown]
-    grid = (
-        cells.cell_data_to_point_data()
-        .extract_surface(algorithm=None)
-        .tube(radius=case.cable.layers[-1].wire.diameter / 2, n_sides=16)
-    )
+    grid = tubes(mesh, disp, peak.axial[order], "N (N)", cells=np.flatnonzero(shown),
+                 radius=case.cable.layers[-1].wire.diameter / 2)  # fmt: skip
     plotter = offscreen_plotter(window_size=(1800, 650))
     plotter.add_mesh(
         grid, scalars="N (N)", cmap="coolwarm",
@@ -289,13 +288,6 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     plotter.reset_camera()
     plotter.camera.zoom(1.5)
     return save(plotter, path)
-
-
-def _line_grid(mesh, displacement):
-    import dolfinx.plot
-
-    topology, cell_types, x = dolfinx.plot.vtk_mesh(mesh)
-    return topology, cell_types, x + np.asarray(displacement).reshape(-1, 3)
 
 
 def bending_figure(case, folder, note: str = "") -> Path:

@@ -59,6 +59,24 @@ __all__ = [
 REDUCED_QUADRATURE = {"quadrature_degree": 1}
 
 
+def check_beam_unknown(w) -> None:
+    """Raise ``ValueError`` in one line unless ``w`` is (6,)-valued on a 1D mesh in 3D, the only
+    setting the beam forms are written for (UFL would fail later with an index error)."""
+    domain = ufl.domain.extract_unique_domain(w)
+    tdim, gdim = domain.topological_dimension, domain.geometric_dimension  # ufl ≥ 2025: ints
+    if (tdim, gdim) != (1, 3):
+        raise ValueError(
+            f"Reissner beam forms need a 1D mesh in 3D (cells are lines, points have x, y, z); "
+            f"got a {tdim}D mesh in {gdim}D: build it with three coordinates per point "
+            "(e.g. dolfinx.mesh.create_mesh with a line element of shape (3,))"
+        )
+    if w.ufl_shape != (6,):
+        raise ValueError(
+            f"Reissner beam forms need a (6,)-valued unknown (u, θ) per node; got shape "
+            f"{w.ufl_shape}: use functionspace(mesh, ('Lagrange', 1, (6,)))"
+        )
+
+
 def unit_tangent(mesh) -> ufl.core.expr.Expr:
     """Unit tangent of each cell of a 1D mesh embedded in 3D, oriented along the cell's node order."""
     J = ufl.Jacobian(mesh)
@@ -136,6 +154,7 @@ class ReissnerBeam:
     """
 
     def __init__(self, w, section: CircularSection, frame=None, dx=None):
+        check_beam_unknown(w)
         mesh = w.function_space.mesh
         self.w = w
         self.section = section

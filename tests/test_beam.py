@@ -169,3 +169,27 @@ def test_jacobian_matches_finite_differences():
     fd = (residual(w0 + eps * d) - residual(w0 - eps * d)) / (2 * eps)
     Ad = A @ d
     assert np.linalg.norm(Ad - fd) < 1e-6 * np.linalg.norm(Ad)
+
+
+@pytest.mark.parametrize("case", ["interval", "scalar"])
+def test_beam_forms_refuse_what_they_are_not_written_for(case):
+    """An interval mesh (1D in 1D) or a scalar unknown: one clear ValueError, not a UFL index
+    error deep in the forms."""
+    from dolfinx import fem
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from forms import CircularSection, ReissnerBeam
+
+    if case == "interval":
+        m = dmesh.create_interval(MPI.COMM_WORLD, 4, [0.0, 1.0])
+        w = fem.Function(fem.functionspace(m, ("Lagrange", 1, (6,))))
+        message = "need a 1D mesh in 3D .* got a 1D mesh in 1D"
+    else:
+        from strand.mesh import straight_beam_mesh
+
+        m = straight_beam_mesh(MPI.COMM_WORLD, 1.0, 4)
+        w = fem.Function(fem.functionspace(m, ("Lagrange", 1)))
+        message = r"need a \(6,\)-valued unknown"
+    with pytest.raises(ValueError, match=message):
+        ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))

@@ -154,15 +154,7 @@ def results_figures(case, result, problem) -> list[Path]:
     note = incomplete_note(result)
 
     def save_fig(fig, name, tight=True):
-        if tight:  # not with a colour bar shared by several axes
-            fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
-        elif note and fig.get_layout_engine() is not None:  # constrained: leave the bottom free
-            fig.get_layout_engine().set(rect=(0, 0.05, 1, 0.95))
-        if note:
-            fig.text(0.5, 0.005, note, color="tab:red", ha="center", va="bottom", fontsize=9)
-        fig.savefig(folder / name, dpi=110)
-        plt.close(fig)
-        paths.append(folder / name)
+        paths.append(_save_figure(fig, folder / name, note, tight))
 
     peak, base = result.peak, result.tensioned
     P_peak = result.peak_step.load if result.peak_step is not None else 0.0
@@ -239,6 +231,22 @@ def results_figures(case, result, problem) -> list[Path]:
         paths.append(deformed_picture(case, result, problem, folder / "deformed_axial_force.png",
                                       note))  # fmt: skip
     return paths
+
+
+def _save_figure(fig, path: Path, note: str = "", tight: bool = True) -> Path:
+    """Lay out ``fig`` (``tight``: tight layout; else its own engine, e.g. constrained for a
+    colour bar shared by several axes), with ``note`` in red along the bottom; save and close."""
+    import matplotlib.pyplot as plt
+
+    if tight:
+        fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
+    elif note and fig.get_layout_engine() is not None:  # constrained: leave the bottom free
+        fig.get_layout_engine().set(rect=(0, 0.05, 1, 0.95))
+    if note:
+        fig.text(0.5, 0.005, note, color="tab:red", ha="center", va="bottom", fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
 
 
 def incomplete_note(result) -> str:
@@ -333,10 +341,4 @@ def bending_figure(case, folder, note: str = "") -> Path:
     ax2.set_title("uniformity: five sections of the zone, end reactions")
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=7)
-    fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
-    if note:
-        fig.text(0.5, 0.005, note, color="tab:red", ha="center", va="bottom", fontsize=9)
-    path = folder / "moment_curvature.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save_figure(fig, folder / "moment_curvature.png", note)

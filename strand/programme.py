@@ -42,26 +42,26 @@ class LoadProgramme:
     stages: tuple[Stage, ...]
     cycle_parameter: str
 
+    def starts(self) -> list[float]:
+        """Where every stage starts: the target of the last stage of its parameter (0 at first)."""
+        reached: dict[str, float] = {}
+        starts = []
+        for s in self.stages:
+            starts.append(reached.get(s.parameter, 0.0))
+            reached[s.parameter] = s.target
+        return starts
+
     def path_lengths(self) -> list[float]:
         """The distance abs(target − start) of every stage, every parameter starting at 0."""
-        start: dict[str, float] = {}
-        lengths = []
-        for s in self.stages:
-            lengths.append(abs(s.target - start.get(s.parameter, 0.0)))
-            start[s.parameter] = s.target
-        return lengths
+        return [abs(s.target - a) for s, a in zip(self.stages, self.starts(), strict=True)]
 
     def time(self, index: int, value: float) -> float:
         """Programme time at ``value`` of the parameter of stage ``index`` (from 0): the stage's
         index plus the fraction of its ramp done, so that stage k runs from k to k + 1 (e.g.
         t = 1 is the end of the tension, 1.5 half-way up the first leg). It grows along the
         run, whereas a cycle's load goes up and down: the time axis of the field series."""
-        stage = self.stages[index]
-        start = next(
-            (s.target for s in reversed(self.stages[:index]) if s.parameter == stage.parameter),
-            0.0,
-        )
-        span = stage.target - start
+        start = self.starts()[index]
+        span = self.stages[index].target - start
         return index + (1.0 if span == 0 else float(np.clip((value - start) / span, 0.0, 1.0)))
 
     def weights(self) -> list[float]:

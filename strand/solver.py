@@ -563,12 +563,11 @@ class LoadStepper:
                 step /= 2
                 cuts += 1
                 if step < self.min_step:
-                    last = result.residuals[-1] if result.residuals else float("nan")
                     raise LoadStepFailure(
                         f"{stage}: no convergence from {current:.6g} towards {trial:.6g} "
                         f"after {cuts} step cuts (increment now {step:.3g} < min_step "
                         f"{self.min_step:.3g}; last Newton: {result.reason}, "
-                        f"{result.iterations} iterations, residual {last:.3e}). "
+                        f"{result.iterations} iterations, residual {result.residual:.3e}). "
                         "The state at the last converged load is kept and was written."
                     )
         self.step = step

@@ -19,7 +19,8 @@ from mpi4py import MPI  # isort: skip
 
 from forms import CircularSection, ReissnerBeam  # isort: skip
 
-from .contact.element import ContactSettings, contact_groups  # isort: skip
+from .contact.element import ContactSettings  # isort: skip
+from .contact.strand_pairs import contact_groups  # isort: skip
 from .contact.sliding import sliding_groups  # isort: skip
 from .geometry import StrandGeometry  # isort: skip
 from .mesh import CableMesh, beam_space, cable_mesh, input_to_block  # isort: skip

@@ -4,8 +4,9 @@ Each ``ContactGroup`` holds the pairs of one kind (crossings or line pairs); the
 ``PairGroup`` applies the normal and friction laws (``strand.contact.group``). Per pair, the gap is
 one of ``kinematics``'s normals, and the slip since the last converged step is Δg_T = S Δq with
 S = P_n[−I, r_a n×, I, r_b n×] acting on (u_a, θ_a, u_b, θ_b): the relative motion of the two
-surface points, n and the tangent plane frozen at the start of the step. ``contact_groups`` builds
-the groups of a strand and their laws from ``ContactSettings``. Units: m, N, rad.
+surface points, n and the tangent plane frozen at the start of the step. ``ContactSettings`` are
+the contact settings of a strand; ``strand.contact.pairs`` builds groups on any beams and
+``strand.contact.strand_pairs`` those of a strand. Units: m, N, rad.
 """
 
 from __future__ import annotations
@@ -16,21 +17,11 @@ import numpy as np
 import numpy.typing as npt
 
 from ..cable import CableError
-from ..geometry import LINE, POINT, StrandGeometry
 from .group import PairGroup, PairKinematics
-from .hertz import compliance, mindlin_ratio, point_coefficient
 from .kinematics import NORMALS, gap_derivatives, skew, stencil_nodes
-from .laws import (
-    ElasticSlip,
-    FrictionLaw,
-    HertzLineLaw,
-    HertzPointLaw,
-    Mindlin,
-    NormalLaw,
-    PenaltyLaw,
-)
+from .laws import FrictionLaw, NormalLaw
 
-__all__ = ["ContactSettings", "ContactGroup", "contact_groups", "pair_laws"]
+__all__ = ["ContactSettings", "ContactGroup"]
 
 COMPLIANCES = ("penalty", "hertz")
 
@@ -115,7 +106,8 @@ class ContactGroup(PairGroup):
         normal_law: the pairs' normal law; friction_law: their friction law (None: frictionless).
         normal: the normal ("frozen", "neighbour", "director").
         tangent0: (P, 2, 3) initial unit tangents at a and b (``director`` only).
-        index: (P,) pair ids in the geometry's pair list, for reporting.
+        index: (P,) pair ids, for reporting.
+        initial_gap: (P,) gap at t = 0, m (default 0: the pairs touch).
     """
 
     def __init__(
@@ -131,6 +123,7 @@ class ContactGroup(PairGroup):
         normal: str,
         tangent0=None,
         index=None,
+        initial_gap=None,
     ):
         super().__init__(stencils, normal_law, friction_law, normal0, index)
         n_pairs, k = self.stencils.shape
@@ -161,9 +154,11 @@ class ContactGroup(PairGroup):
                 raise ValueError("a crossing pair has parallel tangents; use a line pair")
         if normal == "director":
             self.data["t0"] = np.asarray(tangent0, dtype=float)
-        # g0: the initial value, so that g ≡ 0 at t = 0
+        # g0: the initial value less the initial gap, so that g = initial_gap at t = 0
         zero = np.zeros_like(X)
-        self.data["g0"] = gap_derivatives(normal, line, X, zero, self.data).gap.copy()
+        value = gap_derivatives(normal, line, X, zero, self.data).gap
+        gap0 = np.zeros(n_pairs) if initial_gap is None else np.asarray(initial_gap, float)
+        self.data["g0"] = value - gap0
         self._q_old = np.zeros((n_pairs, 12))  # (u_a, θ_a, u_b, θ_b) at the last converged step
         self._S: Array | None = None  # slip operator of the current step
 
@@ -199,92 +194,3 @@ class ContactGroup(PairGroup):
     def _commit_kinematics(self, W: Array) -> None:
         self._q_old = W[:, :2].reshape(-1, 12).copy()
         self._S = None
-
-
-def _neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
-    """Input indices of the previous and next node on the same wire (the node itself at ends)."""
-    wire = geometry.point_wire[nodes]
-    lo, hi = geometry.wire_offsets[wire], geometry.wire_offsets[wire + 1] - 1
-    return np.maximum(nodes - 1, lo), np.minimum(nodes + 1, hi)
-
-
-def _initial_tangents(geometry: StrandGeometry, nodes):
-    prev, nxt = _neighbours(geometry, nodes)
-    c = geometry.points[nxt] - geometry.points[prev]
-    return c / np.linalg.norm(c, axis=1)[:, None]
-
-
-def contact_groups(
-    geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32], settings: ContactSettings
-) -> list[ContactGroup]:
-    """The contact pairs of a strand as ``ContactGroup`` objects (one per pair kind present).
-
-    ``input_to_block`` maps the geometry's point indices to local dof blocks (``mesh.input_to_block``).
-    """
-    pairs = geometry.pairs
-    groups = []
-    for kind in (POINT, LINE):
-        sel = np.flatnonzero(pairs.kind == kind)
-        if len(sel) == 0:
-            continue
-        line = kind == LINE
-        a, b = pairs.a[sel], pairs.b[sel]
-        nodes = {"a": a, "b": b}
-        nodes["a-"], nodes["a+"] = _neighbours(geometry, a)
-        nodes["b-"], nodes["b+"] = _neighbours(geometry, b)
-        roles = stencil_nodes(settings.normal, line)
-        points = np.stack([nodes[r] for r in roles], axis=1)
-        if np.any(input_to_block[points] < 0):
-            raise NotImplementedError(
-                "contact pairs whose nodes are not all on this process: strand's contact runs "
-                "serially for now (pair ownership with a slab partitioner is the way to MPI)"
-            )
-        tangent0 = np.stack([_initial_tangents(geometry, a), _initial_tangents(geometry, b)], 1)
-        normal_law, friction_law = pair_laws(geometry, sel, settings, tangent0)
-        groups.append(
-            ContactGroup(
-                input_to_block[points],
-                geometry.points[points],
-                line,
-                pairs.radius_a[sel],
-                pairs.radius_b[sel],
-                pairs.normal[sel],
-                normal_law,
-                friction_law,
-                settings.normal,
-                tangent0,
-                index=sel,
-            )
-        )
-    return groups
-
-
-def pair_laws(
-    geometry: StrandGeometry, sel, settings: ContactSettings, tangents
-) -> tuple[NormalLaw, FrictionLaw | None]:
-    """The normal and friction laws of the geometry's pairs ``sel`` (all of one kind).
-
-    ``tangents`` (P, 2, 3): the initial unit tangents of the wires at a and b (their crossing
-    angle sizes a Hertz contact).
-    """
-    pairs = geometry.pairs
-    line = bool(np.all(pairs.kind[sel] == LINE))
-    mu = pairs.friction[sel] if settings.friction else np.zeros(len(sel))
-    if settings.compliance == "penalty":
-        k = settings.k_line * pairs.tributary[sel] if line else np.full(len(sel), settings.k_point)
-        return PenaltyLaw(k), ElasticSlip(mu, settings.g_lim) if settings.friction else None
-    wires = [layer.wire for layer in geometry.cable.layers]
-    inner, outer = pairs.interface[sel], pairs.interface[sel] + 1
-    E_a, nu_a = (np.array([getattr(w, key) for w in wires])[inner] for key in ("E", "nu"))
-    E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
-    r_a, r_b = pairs.radius_a[sel], pairs.radius_b[sel]
-    if line:
-        law: NormalLaw = HertzLineLaw(
-            r_a, r_b, compliance(E_a, nu_a), compliance(E_b, nu_b), pairs.tributary[sel]
-        )
-    else:
-        cos_beta = np.abs(np.einsum("pi,pi->p", tangents[:, 0], tangents[:, 1]))
-        beta = np.arccos(np.clip(cos_beta, 0.0, 1.0))
-        law = HertzPointLaw(point_coefficient(r_a, r_b, beta, E_a, nu_a, E_b, nu_b))
-    friction = Mindlin(mu, mindlin_ratio(E_a, nu_a, E_b, nu_b)) if settings.friction else None
-    return law, friction

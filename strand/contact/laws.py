@@ -30,6 +30,8 @@ from functools import cached_property
 import numpy as np
 import numpy.typing as npt
 
+from .hertz import compliance, mindlin_ratio, point_coefficient
+
 __all__ = [
     "NormalLaw",
     "PenaltyLaw",
@@ -42,6 +44,7 @@ __all__ = [
     "coulomb_return",
     "normal_force",
     "tangential_stiffness",
+    "hertz_mindlin",
 ]
 
 Array = npt.NDArray[np.float64]
@@ -286,3 +289,30 @@ class Mindlin(FrictionLaw):
 
     def stiffness(self, p_start, normal):
         return self.ratio * normal.stiffness(p_start) * (p_start > 0)
+
+
+def hertz_mindlin(
+    line: bool, radius_a, radius_b, crossing_angle, tributary, E_a, nu_a, E_b, nu_b, mu=None
+) -> tuple[NormalLaw, FrictionLaw | None]:
+    """The laws of elastic wires in contact, from their radii (m) and moduli (Pa) alone.
+
+    Crossings: ``HertzPointLaw`` of cylinders crossing at ``crossing_angle`` (rad); line pairs:
+    ``HertzLineLaw`` over their ``tributary`` lengths (m). Friction: ``Mindlin`` with Coulomb
+    coefficients ``mu`` (None: frictionless). Values are per pair (P,) or one for all.
+    """
+    r_a = np.asarray(radius_a, float)
+    P = len(r_a)
+    E_a, nu_a, E_b, nu_b, r_b, angle, length = (
+        np.broadcast_to(np.asarray(v, float), (P,))
+        for v in (E_a, nu_a, E_b, nu_b, radius_b, crossing_angle, tributary)
+    )
+    if line:
+        law: NormalLaw = HertzLineLaw(
+            r_a, r_b, compliance(E_a, nu_a), compliance(E_b, nu_b), length
+        )
+    else:
+        law = HertzPointLaw(point_coefficient(r_a, r_b, angle, E_a, nu_a, E_b, nu_b))
+    if mu is None:
+        return law, None
+    return law, Mindlin(np.broadcast_to(np.asarray(mu, float), (P,)).copy(),
+                        mindlin_ratio(E_a, nu_a, E_b, nu_b))  # fmt: skip

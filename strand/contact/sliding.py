@@ -37,10 +37,11 @@ import numpy as np
 import numpy.typing as npt
 
 from ..geometry import LINE, StrandGeometry
-from .element import ContactSettings, pair_laws
+from .element import ContactSettings
 from .group import PairGroup, PairKinematics
 from .kinematics import _cross, _dot, _rotate, _rotation_coefficients, _tangent_map_transpose, skew
 from .laws import FrictionLaw, NormalLaw
+from .strand_pairs import pair_laws
 
 __all__ = ["SlidingGroup", "sliding_groups", "hermite_point", "SlidingWindowError"]
 

@@ -1,0 +1,397 @@
+"""Contact pairs between the nodes of any beams in one dolfinx mesh: the public contact API.
+
+A pair joins a node a of one beam and a node b of another that touch, or may touch, at small
+sliding (the pair is fixed for the whole run). ``NodePairs`` holds, for pairs of one kind, all the
+contact element needs and nothing of where the pairs came from:
+
+* crossing pairs (``line=False``): two beams crossing at an angle touch at a point; the normal is
+  n = ±(t_a × t_b)/‖t_a × t_b‖ (from a to b), t the beams' unit tangents;
+* line pairs (``line=True``): two beams lying along each other touch along a line; each pair
+  stands for a ``tributary`` length of it and its normal is the part of x_b − x_a orthogonal to
+  beam a.
+
+The initial gap is g = (x_b − x_a)·n − r_a − r_b unless given (one value or one per pair: a
+negative one is an initial penetration). Tangents come from the chords x₊ − x₋ between each node's
+neighbours along its beam.
+
+Build pairs from nodes (``node_pairs``; ``locate_nodes`` turns points into nodes) or let
+``candidate_pairs`` find them between two beams; then ``contact_terms`` makes the contact element
+(a ``PairTerms`` for ``strand.solver.NewtonSolver``) with the laws of ``strand.contact.laws``:
+
+>>> pairs = candidate_pairs(V, lower, upper, 1e-3, 1e-3, reach=1e-4)      # doctest: +SKIP
+>>> contact = contact_terms(pairs, PenaltyLaw(1e7), ElasticSlip(0.3, 1e-6))  # doctest: +SKIP
+>>> NewtonSolver(beam.residual(), w, bcs, terms=[contact]).solve()          # doctest: +SKIP
+
+Nodes are local dof blocks of the beam space V (dolfinx's blocked P1 space of (u, θ)): what
+``fem.locate_dofs_geometrical(V, marker)`` and ``locate_dofs_topological(V, 0, vertices)`` return.
+Units: m.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+import numpy.typing as npt
+
+from .element import ContactGroup
+from .kinematics import stencil_nodes
+from .laws import FrictionLaw, NormalLaw, hertz_mindlin
+
+__all__ = [
+    "ROLES",
+    "BeamNodes",
+    "NodePairs",
+    "beam_nodes",
+    "locate_nodes",
+    "node_pairs",
+    "candidate_pairs",
+    "contact_terms",
+    "hertz_laws",
+]
+
+Array = npt.NDArray[np.float64]
+Blocks = npt.NDArray[np.int32]
+
+#: the nodes a pair knows, in order: its two nodes and their neighbours along each beam
+ROLES = ("a", "b", "a-", "a+", "b-", "b+")
+
+
+@dataclass(frozen=True)
+class BeamNodes:
+    """The nodes of a beam mesh: positions (n, 3) in m and, per node, its two neighbours along its
+    beam (n, 2) (the node itself at a beam's end), as local dof blocks."""
+
+    positions: Array
+    neighbours: Blocks
+    cells: Blocks  # (E, 2) the cells as pairs of nodes
+
+    def tangents(self, nodes) -> Array:
+        """Unit chords x₊ − x₋ between the neighbours of ``nodes`` (P, 3)."""
+        nb = self.neighbours[nodes]
+        c = self.positions[nb[:, 1]] - self.positions[nb[:, 0]]
+        return c / np.linalg.norm(c, axis=1)[:, None]
+
+
+def beam_nodes(V) -> BeamNodes:
+    """Positions and neighbours of every node of the beam space ``V`` (blocked P1 on a 1D mesh).
+
+    Raises ``ValueError`` at a node shared by more than two cells (beams meet there: pair such
+    beams through contact or links, not through shared nodes).
+    """
+    x = np.asarray(V.tabulate_dof_coordinates(), dtype=float).reshape(-1, 3)
+    cells = np.asarray(V.dofmap.list, dtype=np.int32).reshape(-1, 2)
+    n = len(x)
+    degree = np.bincount(cells.ravel(), minlength=n)
+    if degree.max(initial=0) > 2:
+        node = int(np.argmax(degree))
+        raise ValueError(
+            f"node {node} at {np.round(x[node], 6).tolist()} joins {degree[node]} cells: contact "
+            "pairs need beams that are chains of cells (no junctions)"
+        )
+    neighbours = np.repeat(np.arange(n, dtype=np.int32)[:, None], 2, axis=1)
+    # each cell gives its first node a neighbour in slot 1 and its second one in slot 0; a node
+    # whose two cells point the same way gets the second in the other slot
+    order = np.concatenate([cells[:, 0], cells[:, 1]])
+    other = np.concatenate([cells[:, 1], cells[:, 0]])
+    slot = np.concatenate([np.ones(len(cells), int), np.zeros(len(cells), int)])
+    taken = np.zeros((n, 2), dtype=bool)
+    for node, nb, s in zip(order, other, slot, strict=True):  # set-up only, once per mesh
+        s = s if not taken[node, s] else 1 - s
+        neighbours[node, s] = nb
+        taken[node, s] = True
+    return BeamNodes(x, neighbours, cells)
+
+
+def locate_nodes(V, points, tol: float | None = None) -> Blocks:
+    """The nodes (local dof blocks) of ``V`` at ``points`` (m, (P, 3) or (3,)).
+
+    ``tol`` (m): how far a point may be from its node; default 1e-8 of the mesh's extent. A point
+    farther than that raises ``ValueError`` naming it.
+    """
+    x = np.asarray(V.tabulate_dof_coordinates(), dtype=float).reshape(-1, 3)
+    p = np.atleast_2d(np.asarray(points, dtype=float))
+    if p.shape[1] != 3:
+        raise ValueError(f"points must be (P, 3) in m; got shape {p.shape}")
+    if tol is None:
+        tol = 1e-8 * float(np.ptp(x, axis=0).max(initial=1.0))
+    d = np.linalg.norm(p[:, None, :] - x[None, :, :], axis=2)
+    nearest = d.argmin(axis=1)
+    far = np.flatnonzero(d[np.arange(len(p)), nearest] > tol)
+    if len(far):
+        i = far[0]
+        raise ValueError(
+            f"point {p[i].tolist()} is {d[i, nearest[i]]:.3g} m from the nearest node (tolerance "
+            f"{tol:.3g} m): put a node there, or use candidate_pairs"
+        )
+    return nearest.astype(np.int32)
+
+
+@dataclass(frozen=True)
+class NodePairs:
+    """Contact pairs of one kind: what the contact element needs, whatever built them.
+
+    Attributes:
+        nodes: (P, 6) local dof blocks of ``ROLES``: a, b, and their neighbours a−, a+, b−, b+.
+        positions: (P, 6, 3) initial positions of those nodes, m.
+        line: line pairs (beams along each other) rather than crossings.
+        radius_a, radius_b: (P,) radii of the two beams, m.
+        normal: (P, 3) initial unit normals from a to b.
+        initial_gap: (P,) gap at t = 0, m (negative: penetration).
+        tributary: (P,) length of contact line that a line pair stands for, m (0 for crossings).
+        index: (P,) the pairs' ids for reporting (default 0..P−1).
+    """
+
+    nodes: Blocks
+    positions: Array
+    line: bool
+    radius_a: Array
+    radius_b: Array
+    normal: Array
+    initial_gap: Array
+    tributary: Array
+    index: npt.NDArray[np.intp]
+
+    def __len__(self) -> int:
+        return len(self.nodes)
+
+    @property
+    def a(self) -> Blocks:
+        return self.nodes[:, 0]
+
+    @property
+    def b(self) -> Blocks:
+        return self.nodes[:, 1]
+
+    @property
+    def tangents(self) -> Array:
+        """(P, 2, 3) initial unit tangents at a and b: chords between their neighbours."""
+        c = self.positions[:, [3, 5]] - self.positions[:, [2, 4]]
+        return c / np.linalg.norm(c, axis=2)[..., None]
+
+    @property
+    def crossing_angle(self) -> Array:
+        """(P,) angle between the two beams at the pair, rad, in [0, π/2]."""
+        t = self.tangents
+        cos = np.abs(np.einsum("pi,pi->p", t[:, 0], t[:, 1]))
+        return np.arccos(np.clip(cos, 0.0, 1.0))
+
+    def stencil(self, normal: str) -> tuple[Blocks, Array]:
+        """The nodes (P, k) and their positions (P, k, 3) that the contact normal ``normal``
+        ("frozen", "neighbour", "director") reads."""
+        cols = [ROLES.index(r) for r in stencil_nodes(normal, self.line)]
+        return self.nodes[:, cols], self.positions[:, cols]
+
+    def select(self, mask) -> NodePairs:
+        """The pairs ``mask`` (boolean or indices) of these."""
+        return NodePairs(
+            **{
+                f.name: (getattr(self, f.name) if f.name == "line" else getattr(self, f.name)[mask])
+                for f in fields(self)
+            }
+        )
+
+
+def _per_pair(value, n: int, name: str) -> Array:
+    out = np.broadcast_to(np.asarray(value, dtype=float), (n,)).copy()
+    if not np.all(np.isfinite(out)):
+        raise ValueError(f"{name} must be finite numbers (m)")
+    return out
+
+
+def node_pairs(
+    V,
+    a,
+    b,
+    radius_a,
+    radius_b,
+    line: bool = False,
+    initial_gap=None,
+    tributary=None,
+    nodes: BeamNodes | None = None,
+) -> NodePairs:
+    """Pairs joining the nodes ``a`` of one beam and ``b`` of another (local dof blocks of ``V``).
+
+    Args:
+        radius_a, radius_b: beam radii, m (one value, or one per pair).
+        line: the beams lie along each other (line contact) rather than cross.
+        initial_gap: gap at t = 0 (m, one value or one per pair); default: measured,
+            (x_b − x_a)·n − r_a − r_b.
+        tributary: line pairs: the length of contact line each pair stands for, m; default the
+            half-lengths of the cells of beam b on either side of b.
+        nodes: ``beam_nodes(V)``, if already built.
+    """
+    nodes = nodes or beam_nodes(V)
+    a = np.atleast_1d(np.asarray(a, dtype=np.int32))
+    b = np.atleast_1d(np.asarray(b, dtype=np.int32))
+    if a.shape != b.shape or a.ndim != 1:
+        raise ValueError(f"a and b must be equal-length lists of nodes; got {a.shape}, {b.shape}")
+    n = len(nodes.positions)
+    if len(a) and (min(a.min(), b.min()) < 0 or max(a.max(), b.max()) >= n):
+        raise ValueError(f"nodes must be local dof blocks of V, in 0..{n - 1}")
+    if np.any(a == b):
+        raise ValueError("a pair joins a node to itself")
+    P = len(a)
+    table = np.column_stack([a, b, nodes.neighbours[a], nodes.neighbours[b]]).astype(np.int32)
+    x = nodes.positions[table]
+    r_a, r_b = _per_pair(radius_a, P, "radius_a"), _per_pair(radius_b, P, "radius_b")
+    if np.any(r_a <= 0) or np.any(r_b <= 0):
+        raise ValueError("beam radii must be positive (m)")
+    d = x[:, 1] - x[:, 0]
+    ta, tb = nodes.tangents(a), nodes.tangents(b)
+    if line:
+        m = d - np.einsum("pi,pi->p", d, ta)[:, None] * ta
+    else:
+        m = np.cross(ta, tb)
+        if np.any(np.linalg.norm(m, axis=1) < 1e-3):
+            raise ValueError(
+                "a crossing pair joins beams that are parallel there (angle < 0.06°); "
+                "use line=True for beams lying along each other"
+            )
+        m *= np.where(np.einsum("pi,pi->p", d, m) < 0, -1.0, 1.0)[:, None]  # from a to b
+    size = np.linalg.norm(m, axis=1)
+    if np.any(size == 0):
+        raise ValueError("a line pair's nodes lie on beam a's axis: its normal is undefined")
+    normal = m / size[:, None]
+    measured = np.einsum("pi,pi->p", d, normal) - r_a - r_b
+    gap = measured if initial_gap is None else _per_pair(initial_gap, P, "initial_gap")
+    if tributary is None:
+        tributary = 0.5 * (
+            np.linalg.norm(x[:, 1] - x[:, 4], axis=1) + np.linalg.norm(x[:, 5] - x[:, 1], axis=1)
+        )
+    trib = _per_pair(tributary, P, "tributary") if line else np.zeros(P)
+    if line and np.any(trib <= 0):
+        raise ValueError("line pairs need positive tributary lengths (m)")
+    return NodePairs(table, x, bool(line), r_a, r_b, normal, gap, trib, np.arange(P))
+
+
+def _closest_on_segments(p: Array, s0: Array, s1: Array) -> tuple[Array, Array]:
+    """For points p (N, 3) and segments [s0, s1] (S, 3): distances (N, S) and parameters."""
+    u = s1 - s0
+    uu = np.einsum("si,si->s", u, u)
+    t = np.einsum("nsi,si->ns", p[:, None, :] - s0[None], u) / np.where(uu > 0, uu, 1.0)
+    t = np.clip(t, 0.0, 1.0)
+    q = s0[None] + t[..., None] * u[None]
+    return np.linalg.norm(p[:, None, :] - q, axis=2), t
+
+
+def candidate_pairs(
+    V,
+    beam_a,
+    beam_b,
+    radius_a: float,
+    radius_b: float,
+    reach: float,
+    line: bool = False,
+    initial_gap=None,
+) -> NodePairs:
+    """The pairs between two beams whose surfaces are within ``reach`` (m) of each other.
+
+    Every node of beam b is measured against beam a's centreline (its closest point on a's
+    cells) and paired with the node of a nearer that point. Crossing beams (``line=False``) get
+    one pair per crossing: the closest node of each run of nodes within reach. Beams lying along
+    each other (``line=True``) get a pair at every node of b within reach, standing for its
+    tributary length. Put nodes at the crossings for exact crossing pairs: a pair between nodes
+    away from a crossing still measures the distance between the two centrelines there (n is
+    normal to both), but it presses the beams at those nodes.
+
+    Args:
+        beam_a, beam_b: the nodes (local dof blocks of ``V``) of each beam.
+        radius_a, radius_b: the beams' radii, m.
+        reach: largest initial gap of a pair, m (pairs of a larger gap never close at small
+            sliding if reach is chosen as the largest expected approach).
+        initial_gap: as ``node_pairs`` (default: measured).
+    """
+    nodes = beam_nodes(V)
+    on_a = np.zeros(len(nodes.positions), dtype=bool)
+    on_a[np.asarray(beam_a, dtype=np.int64)] = True
+    nb = np.unique(np.asarray(beam_b, dtype=np.int32))
+    if np.any(on_a[nb]):
+        raise ValueError("beam_a and beam_b share nodes: give the nodes of two separate beams")
+    segments = nodes.cells[on_a[nodes.cells].all(axis=1)]
+    if len(segments) == 0 or len(nb) == 0:
+        raise ValueError("each beam needs at least one cell (two nodes) of V")
+    x = nodes.positions
+    dist, t = _closest_on_segments(x[nb], x[segments[:, 0]], x[segments[:, 1]])
+    best = dist.argmin(axis=1)
+    gap = dist[np.arange(len(nb)), best] - radius_a - radius_b
+    near = gap <= reach
+    a = np.where(t[np.arange(len(nb)), best] < 0.5, segments[best, 0], segments[best, 1])
+    keep = np.flatnonzero(near)
+    if not line:
+        keep = _closest_of_each_run(nb, near, gap, nodes)
+    if len(keep) == 0:
+        raise ValueError(
+            f"no node of beam b is within reach = {reach:.3g} m of beam a's surface (smallest "
+            f"gap {gap.min():.3g} m)"
+        )
+    return node_pairs(
+        V, a[keep], nb[keep], radius_a, radius_b, line, initial_gap=initial_gap, nodes=nodes
+    )
+
+
+def _closest_of_each_run(nb, near, gap, nodes: BeamNodes) -> npt.NDArray[np.intp]:
+    """Positions (in ``nb``) of the node of least gap in each run of consecutive near nodes."""
+    where = {int(n): i for i, n in enumerate(nb)}
+    label = -np.ones(len(nb), dtype=np.intp)
+    runs = 0
+    for i in np.flatnonzero(near):  # flood each run along the beam (set-up only)
+        if label[i] >= 0:
+            continue
+        label[i] = runs
+        stack = [i]
+        while stack:
+            j = stack.pop()
+            for k in nodes.neighbours[nb[j]]:
+                m = where.get(int(k))
+                if m is not None and near[m] and label[m] < 0:
+                    label[m] = runs
+                    stack.append(m)
+        runs += 1
+    return np.array(
+        [np.flatnonzero(label == r)[gap[label == r].argmin()] for r in range(runs)], dtype=np.intp
+    )
+
+
+def contact_terms(
+    pairs: NodePairs,
+    normal_law: NormalLaw,
+    friction_law: FrictionLaw | None = None,
+    normal: str = "director",
+) -> ContactGroup:
+    """The contact element on ``pairs``: a ``PairTerms`` to give ``NewtonSolver(terms=[...])``.
+
+    Args:
+        normal_law: e.g. ``PenaltyLaw(k)`` (N/m, per pair or one for all) or ``hertz_laws``'s.
+        friction_law: e.g. ``ElasticSlip(mu, g_lim)``; None: frictionless.
+        normal: "director" (n from the nodes' rotated tangents, the default), "neighbour" (from
+            the chords of the neighbouring nodes) or "frozen" (the initial normal).
+    """
+    stencils, positions = pairs.stencil(normal)
+    return ContactGroup(
+        stencils,
+        positions,
+        pairs.line,
+        pairs.radius_a,
+        pairs.radius_b,
+        pairs.normal,
+        normal_law,
+        friction_law,
+        normal,
+        pairs.tangents,
+        index=pairs.index,
+        initial_gap=pairs.initial_gap,
+    )
+
+
+def hertz_laws(
+    pairs: NodePairs, E_a, nu_a, E_b, nu_b, mu=None
+) -> tuple[NormalLaw, FrictionLaw | None]:
+    """Contact laws of elastic wires from their radii and moduli (Pa) alone: Hertz crossed
+    cylinders at the pairs' crossing angle, or Hertz line contact over the tributary length, and
+    Mindlin's initial tangential stiffness with Coulomb coefficients ``mu`` (None: frictionless).
+    Material values may be one for all or one per pair (``laws.hertz_mindlin``)."""
+    return hertz_mindlin(
+        pairs.line, pairs.radius_a, pairs.radius_b, pairs.crossing_angle, pairs.tributary,
+        E_a, nu_a, E_b, nu_b, mu,
+    )  # fmt: skip

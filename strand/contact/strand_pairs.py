@@ -1,0 +1,95 @@
+"""The contact pairs of a strand, built through the public contact API (``strand.contact.pairs``).
+
+The strand geometry found its pairs analytically (``strand.geometry``): crossings where two wires
+are radially aligned, and every layer-1 node against the core. Here they become ``NodePairs``
+(nodes as dof blocks, the geometry's radial normals, gaps zero by construction) and, with the laws
+that ``ContactSettings`` choose, the small-sliding ``ContactGroup`` of each kind. Units: m, N.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from ..geometry import LINE, POINT, StrandGeometry
+from .element import ContactGroup, ContactSettings
+from .laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
+from .pairs import NodePairs, contact_terms
+
+__all__ = ["strand_pairs", "contact_groups", "pair_laws"]
+
+
+def _neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
+    """Input indices of the previous and next node on the same wire (the node itself at ends)."""
+    wire = geometry.point_wire[nodes]
+    lo, hi = geometry.wire_offsets[wire], geometry.wire_offsets[wire + 1] - 1
+    return np.maximum(nodes - 1, lo), np.minimum(nodes + 1, hi)
+
+
+def strand_pairs(geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32], sel) -> NodePairs:
+    """The geometry's pairs ``sel`` (all of one kind) as ``NodePairs`` on the local dof blocks
+    ``input_to_block`` (``mesh.input_to_block``), with zero initial gaps."""
+    pairs = geometry.pairs
+    sel = np.asarray(sel)
+    a, b = pairs.a[sel], pairs.b[sel]
+    points = np.column_stack([a, b, *_neighbours(geometry, a), *_neighbours(geometry, b)])
+    blocks = input_to_block[points]
+    if np.any(blocks < 0):
+        raise NotImplementedError(
+            "contact pairs whose nodes are not all on this process: strand's contact runs "
+            "serially for now (pair ownership with a slab partitioner is the way to MPI)"
+        )
+    kinds = pairs.kind[sel]
+    if len(np.unique(kinds)) > 1:
+        raise ValueError("strand_pairs: the selected pairs mix crossings and line pairs")
+    return NodePairs(
+        blocks.astype(np.int32),
+        geometry.points[points],
+        bool(len(kinds) and kinds[0] == LINE),
+        pairs.radius_a[sel],
+        pairs.radius_b[sel],
+        pairs.normal[sel],
+        np.zeros(len(sel)),
+        pairs.tributary[sel],
+        sel,
+    )
+
+
+def contact_groups(
+    geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32], settings: ContactSettings
+) -> list[ContactGroup]:
+    """The contact pairs of a strand as ``ContactGroup`` objects (one per pair kind present)."""
+    groups = []
+    for kind in (POINT, LINE):
+        sel = np.flatnonzero(geometry.pairs.kind == kind)
+        if len(sel):
+            pairs = strand_pairs(geometry, input_to_block, sel)
+            laws = pair_laws(geometry, sel, settings, pairs.tangents)
+            groups.append(contact_terms(pairs, *laws, normal=settings.normal))
+    return groups
+
+
+def pair_laws(
+    geometry: StrandGeometry, sel, settings: ContactSettings, tangents
+) -> tuple[NormalLaw, FrictionLaw | None]:
+    """The normal and friction laws of the geometry's pairs ``sel`` (all of one kind).
+
+    ``tangents`` (P, 2, 3): the initial unit tangents of the wires at a and b (their crossing
+    angle sizes a Hertz contact).
+    """
+    pairs = geometry.pairs
+    line = bool(np.all(pairs.kind[sel] == LINE))
+    mu = pairs.friction[sel] if settings.friction else np.zeros(len(sel))
+    if settings.compliance == "penalty":
+        k = settings.k_line * pairs.tributary[sel] if line else np.full(len(sel), settings.k_point)
+        return PenaltyLaw(k), ElasticSlip(mu, settings.g_lim) if settings.friction else None
+    wires = [layer.wire for layer in geometry.cable.layers]
+    inner, outer = pairs.interface[sel], pairs.interface[sel] + 1
+    E_a, nu_a = (np.array([getattr(w, key) for w in wires])[inner] for key in ("E", "nu"))
+    E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
+    cos_beta = np.abs(np.einsum("pi,pi->p", tangents[:, 0], tangents[:, 1]))
+    beta = np.arccos(np.clip(cos_beta, 0.0, 1.0))
+    return hertz_mindlin(
+        line, pairs.radius_a[sel], pairs.radius_b[sel], beta, pairs.tributary[sel],
+        E_a, nu_a, E_b, nu_b, mu if settings.friction else None,
+    )  # fmt: skip

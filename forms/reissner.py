@@ -104,10 +104,13 @@ class CircularSection:
 
     Arguments may be numbers, ``Constant`` or cell-wise (DG0) ``Function`` objects, so one mesh can
     mix steel and aluminium wires. The shear coefficient defaults to Cowper's 6(1+ν)/(7+6ν).
+    ``torsional_stiffness`` (N m²) replaces GJ = G πd⁴/32 when given: for a benchmark that sets
+    it apart, or a section whose torsion is not that of a solid circle.
     """
 
-    def __init__(self, d, E, nu, shear_coefficient=None):
+    def __init__(self, d, E, nu, shear_coefficient=None, torsional_stiffness=None):
         self.d, self.E, self.nu = d, E, nu
+        self.torsional_stiffness = torsional_stiffness
         self.G = E / (2 * (1 + nu))
         self.shear_coefficient = (
             6 * (1 + nu) / (7 + 6 * nu) if shear_coefficient is None else shear_coefficient
@@ -128,7 +131,9 @@ class CircularSection:
 
     @property
     def GJ(self):
-        """Torsional stiffness (N m²)."""
+        """Torsional stiffness (N m²): ``torsional_stiffness`` if given, else G πd⁴/32."""
+        if self.torsional_stiffness is not None:
+            return self.torsional_stiffness
         return self.G * self.polar_moment
 
     @property

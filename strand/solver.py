@@ -7,7 +7,8 @@ state, all its residual vectors and tangent blocks at once (numpy arrays). The s
 * extends the sparsity pattern of the UFL Jacobian with the stencils, once,
 * adds the stencil residuals into the ghosted residual vector and the blocks into the matrix that
   dolfinx assembled (one ``setValuesBlockedLocalRCV`` call per term set),
-* masks Dirichlet dofs, and
+* masks Dirichlet dofs, lifting the stencils' coupling to prescribed motions onto the free
+  rows (as dolfinx's ``apply_lifting`` does for the forms), and
 * keeps the last converged state so that a failed step can be rolled back.
 
 ``dolfinx.fem.petsc.NonlinearProblem`` has no argument for a user-built matrix (it would allocate a
@@ -253,18 +254,33 @@ class NewtonSolver:
         t0 = time.perf_counter()
         wn = wl.reshape(-1, 6)
         out = []
+        lift = None
         for t, (idx, rows, mask) in zip(self.terms, self._term_masks(), strict=True):
             with np.errstate(all="ignore"):  # a wild iterate's inf/nan stops SNES, then a cut
                 f, K = t.evaluate(wn, True)
             f_rows = f[rows].copy()  # unmasked, for the reactions
             if len(rows):  # only the few stencils that touch a Dirichlet dof
-                f[rows] = np.where(mask, 0.0, f[rows])
                 if K is not None:
+                    if lift is None:
+                        lift = self._prescribed_increment(wl)
+                    # lifting, as dolfinx's apply_lifting does for the forms: the free rows
+                    # get K_fb (g − w_b), so that the step that moves the prescribed dofs to
+                    # their values moves the others with them (Newton stays quadratic)
+                    d = np.where(mask, lift[idx[rows]], 0.0)
+                    f[rows] += np.einsum("pij,pj->pi", K[rows], d)
                     K[rows] = np.where(mask[:, :, None] | mask[:, None, :], 0.0, K[rows])
+                f[rows] = np.where(mask, 0.0, f[rows])
             out.append((idx, f, K, rows, f_rows))
         self._cache = (wl.copy(), out)
         self.timings["terms"] += time.perf_counter() - t0
         return out
+
+    def _prescribed_increment(self, wl: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """g − w at the Dirichlet dofs (local, ghosts included), zero elsewhere."""
+        d = np.zeros_like(wl)
+        for bc in self.bcs:
+            bc.set(d, x0=wl, alpha=1.0)
+        return d
 
     def _term_masks(self):
         """Per term set: local dof indices (P, m) of f and K, the rows (stencils) holding a

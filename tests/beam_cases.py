@@ -39,14 +39,20 @@ class Cantilever:
 
 
 def cantilever(
-    n_cells: int, length: float = 1.0, direction=(1.0, 0.0, 0.0), terms=(), options=None
+    n_cells: int,
+    length: float = 1.0,
+    direction=(1.0, 0.0, 0.0),
+    terms=(),
+    options=None,
+    section: CircularSection | None = None,
 ) -> Cantilever:
-    """Clamped at the origin, free end at ``length * direction``; tip force and moment constants."""
+    """Clamped at the origin, free end at ``length * direction``; tip force and moment constants.
+    The section defaults to steel of diameter ``D``."""
     d = np.asarray(direction, float) / np.linalg.norm(direction)
     mesh = straight_beam_mesh(MPI.COMM_WORLD, length, n_cells, direction=d)
     V = beam_space(mesh)
     w = fem.Function(V, name="w")
-    beam = ReissnerBeam(w, CircularSection(D, E, NU))
+    beam = ReissnerBeam(w, section or CircularSection(D, E, NU))
     force = fem.Constant(mesh, np.zeros(3))
     moment = fem.Constant(mesh, np.zeros(3))
     at_tip = lambda x: np.isclose(x.T @ d, length)  # noqa: E731

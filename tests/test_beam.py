@@ -7,7 +7,7 @@ from dolfinx import fem
 from mpi4py import MPI
 from scipy.spatial.transform import Rotation
 
-from beam_cases import cantilever, section_stiffness
+from beam_cases import NU, D, E, cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, node_to_block, polyline_mesh
 from strand.output import section_force_values
@@ -86,6 +86,27 @@ def test_bar_tension_and_torsion_exact(direction):
     np.testing.assert_allclose(sf[:, 0], F, rtol=1e-8)
     np.testing.assert_allclose(sf[:, 3], T, rtol=1e-8)
     np.testing.assert_allclose(sf[:, [1, 2, 4, 5]], 0.0, atol=1e-8 * F)
+
+
+def test_torsional_stiffness_set_apart_from_E_and_nu():
+    """A section given its own GJ twists by TL/GJ under a torque and bends as before (EI, κGA
+    from E and ν): a tip force P gives PL³/3EI (1 − 1/4n²) + PL/κGA, the exact tip deflection of n
+    two-node one-point Timoshenko cells (each load alone: small rotations)."""
+    L, T, P = 0.7, 1.0, 2.0
+    GJ = 0.37 * S["GJ"]
+    section = CircularSection(D, E, NU, torsional_stiffness=GJ)
+    assert section.GJ == GJ and section.EI == pytest.approx(S["EI"], rel=1e-15)
+    n = 10
+    case = cantilever(n, L, section=section)
+    case.moment.value = [T, 0.0, 0.0]
+    assert case.solver.solve().converged
+    assert case.tip_theta[0] == pytest.approx(T * L / GJ, rel=1e-8)
+    case.moment.value = [0.0, 0.0, 0.0]
+    case.force.value = [0.0, 0.0, P]
+    assert case.solver.solve().converged
+    kappa_GA = section.shear_coefficient * E / (2 * (1 + NU)) * np.pi * D**2 / 4
+    bending = P * L**3 / (3 * S["EI"]) * (1 - 1 / (4 * n**2))
+    assert case.tip_u[2] == pytest.approx(bending + P * L / kappa_GA, rel=1e-4)
 
 
 def helix_points(radius, lay_angle, length, n):

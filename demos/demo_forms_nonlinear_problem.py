@@ -1,0 +1,117 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: light
+#       format_version: '1.5'
+# ---
+
+# # The beam forms with dolfinx's own `NonlinearProblem`
+#
+# `forms` is plain UFL: its Reissner beam needs nothing of strand's solver. This demo bends a
+# cantilever far into the nonlinear range with `dolfinx.fem.petsc.NonlinearProblem` and shows the
+# PETSc options it needs, and why. The reference is the elastica: a cantilever under a dead tip
+# load $P$ with $PL^2/EI = 10$ has its tip at $v/L = 0.81061$ (Mattiasson, IJNME 17, 1981).
+# Units: SI.
+
+# +
+import strand  # noqa: F401  (the wheel's MPI library must be loaded before dolfinx; see README)
+
+# isort: split
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import ufl
+from dolfinx import fem, mesh
+from dolfinx.fem.petsc import NonlinearProblem
+from mpi4py import MPI
+
+from forms import CircularSection, ReissnerBeam
+from strand.mesh import beam_space, straight_beam_mesh
+
+# -
+
+# ## The cantilever
+#
+# 40 cells along $x$, clamped at $x = 0$, a fixed-direction force $P e_y$ at the tip.
+
+L, n, d, E, nu = 1.0, 40, 0.01, 210e9, 0.3
+domain = straight_beam_mesh(MPI.COMM_WORLD, L, n)
+V = beam_space(domain)
+w = fem.Function(V)
+section = CircularSection(d, E, nu)
+beam = ReissnerBeam(w, section)
+tip = mesh.locate_entities_boundary(domain, 0, lambda x: np.isclose(x[0], L))
+root = mesh.locate_entities_boundary(domain, 0, lambda x: np.isclose(x[0], 0.0))
+ds = ufl.Measure("ds", domain, subdomain_data=mesh.meshtags(domain, 0, tip, np.ones_like(tip)))
+force = fem.Constant(domain, np.zeros(3))
+v = ufl.TestFunction(V)
+F = beam.residual(v) - ufl.dot(force, ufl.as_vector([v[0], v[1], v[2]])) * ds(1)
+bc = fem.dirichletbc(np.zeros(6), fem.locate_dofs_topological(V, 0, root), V)
+P = 10 * E * np.pi * d**4 / 64 / L**2
+tip_block = int(fem.locate_dofs_topological(V, 0, tip)[0])
+lu = {"ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"}
+
+# ## PETSc's defaults: no convergence, and no error
+#
+# By default SNES globalises Newton with a backtracking line search (`bt`): it accepts a step
+# only if it lowers $\|F\|$. A beam's residual rises by orders of magnitude in Newton's first
+# iterations: the first correction is the linear solution, whose large tip deflection stretches the
+# beam (axial strain $\sim (v/L)^2/2$, times $EA$). So `bt` shrinks every step to a sliver, and
+# after `snes_max_it` iterations the solve stops where it is, without raising.
+
+default = NonlinearProblem(F, w, bcs=[bc], petsc_options_prefix="default_", petsc_options=lu)
+force.value = [0.0, P, 0.0]
+default.solve()
+reason, its = default.solver.getConvergedReason(), default.solver.getIterationNumber()
+v_default = w.x.array.reshape(-1, 6)[tip_block, 1] / L
+print(f"default options: reason {reason}, {its} iterations, tip at v/L = {v_default:.4f}")
+assert reason < 0  # what every script must check (or ask PETSc to raise, below)
+
+# ## The options that work
+#
+# * `snes_linesearch_type: basic`: full Newton steps, which converge quadratically once close;
+# * load increments, so that each solve starts close (here ten equal ones);
+# * `snes_divergence_tolerance`: PETSc stops Newton when $\|F\|$ exceeds $10^4$ times its initial
+#   value, which a beam's first iterations do on their way to converge; we raise it;
+# * `snes_error_if_not_converged`: a solve that fails raises instead of returning quietly.
+
+w.x.array[:] = 0.0
+options = {
+    **lu,
+    "snes_linesearch_type": "basic",
+    "snes_divergence_tolerance": 1e300,
+    "snes_atol": 1e-8,
+    "snes_rtol": 1e-10,
+    "snes_error_if_not_converged": True,
+}
+problem = NonlinearProblem(F, w, bcs=[bc], petsc_options_prefix="beam_", petsc_options=options)
+shapes = []
+x0 = V.tabulate_dof_coordinates()
+for k in range(1, 11):
+    force.value = [0.0, k / 10 * P, 0.0]
+    problem.solve()
+    u = w.x.array.reshape(-1, 6)
+    shapes.append(x0[:, :2] + u[:, :2])
+    print(f"P = {k / 10:.1f} × 10 EI/L²: {problem.solver.getIterationNumber()} Newton iterations")
+v_tip, u_tip = u[tip_block, 1] / L, u[tip_block, 0] / L
+print(f"tip: v/L = {v_tip:.5f} (elastica 0.81061), (L − x)/L = {-u_tip:.5f} (elastica 0.55500)")
+assert abs(v_tip - 0.81061) < 1e-3 and abs(-u_tip - 0.55500) < 1e-3
+
+# ## Picture
+
+out = Path("results/demo_forms_nonlinear_problem")
+out.mkdir(parents=True, exist_ok=True)
+fig, ax = plt.subplots(figsize=(5, 4.5))
+order = np.argsort(x0[:, 0])
+for k, xy in enumerate(shapes, start=1):
+    ax.plot(xy[order, 0], xy[order, 1], "-", color=plt.cm.viridis(k / 10), lw=1)
+ax.plot([1 - 0.555], [0.81061], "kx", ms=8, label="elastica, PL²/EI = 10")
+ax.plot(x0[order, 0], 0 * x0[order, 0], "k:", lw=1)
+ax.set(xlabel="x (m)", ylabel="y (m)", aspect="equal", title="ten load steps")
+ax.legend(loc="upper left")
+fig.savefig(out / "cantilever.png", dpi=120, bbox_inches="tight")
+print("picture:", out / "cantilever.png")

@@ -89,18 +89,22 @@ def beam_nodes(V) -> BeamNodes:
             f"node {node} at {np.round(x[node], 6).tolist()} joins {degree[node]} cells: contact "
             "pairs need beams that are chains of cells (no junctions)"
         )
-    neighbours = np.repeat(np.arange(n, dtype=np.int32)[:, None], 2, axis=1)
-    # each cell gives its first node a neighbour in slot 1 and its second one in slot 0; a node
-    # whose two cells point the same way gets the second in the other slot
-    order = np.concatenate([cells[:, 0], cells[:, 1]])
+    # a node's first cell gives its neighbour in slot 0, its second cell in slot 1 (ends keep
+    # themselves there); the chords' signs are arbitrary but fixed, which is all the element needs
+    node = np.concatenate([cells[:, 0], cells[:, 1]])
     other = np.concatenate([cells[:, 1], cells[:, 0]])
-    slot = np.concatenate([np.ones(len(cells), int), np.zeros(len(cells), int)])
-    taken = np.zeros((n, 2), dtype=bool)
-    for node, nb, s in zip(order, other, slot, strict=True):  # set-up only, once per mesh
-        s = s if not taken[node, s] else 1 - s
-        neighbours[node, s] = nb
-        taken[node, s] = True
+    order = np.argsort(node, kind="stable")
+    node, other = node[order], other[order]
+    second = np.concatenate([[False], node[1:] == node[:-1]])
+    neighbours = np.repeat(np.arange(n, dtype=np.int32)[:, None], 2, axis=1)
+    neighbours[node, second.astype(np.intp)] = other
     return BeamNodes(x, neighbours, cells)
+
+
+def _chunks(rows: int, columns: int, budget: int = 2**21):
+    """Slices of ``rows`` whose (rows × columns) distance tables stay within ``budget`` entries."""
+    step = max(1, budget // max(columns, 1))
+    return [slice(i, min(i + step, rows)) for i in range(0, rows, step)]
 
 
 def locate_nodes(V, points, tol: float | None = None) -> Blocks:
@@ -115,13 +119,17 @@ def locate_nodes(V, points, tol: float | None = None) -> Blocks:
         raise ValueError(f"points must be (P, 3) in m; got shape {p.shape}")
     if tol is None:
         tol = 1e-8 * float(np.ptp(x, axis=0).max(initial=1.0))
-    d = np.linalg.norm(p[:, None, :] - x[None, :, :], axis=2)
-    nearest = d.argmin(axis=1)
-    far = np.flatnonzero(d[np.arange(len(p)), nearest] > tol)
+    nearest = np.empty(len(p), dtype=np.intp)
+    distance = np.empty(len(p))
+    for rows in _chunks(len(p), len(x)):
+        d = np.linalg.norm(p[rows, None, :] - x[None, :, :], axis=2)
+        nearest[rows] = d.argmin(axis=1)
+        distance[rows] = d[np.arange(len(d)), nearest[rows]]
+    far = np.flatnonzero(distance > tol)
     if len(far):
         i = far[0]
         raise ValueError(
-            f"point {p[i].tolist()} is {d[i, nearest[i]]:.3g} m from the nearest node (tolerance "
+            f"point {p[i].tolist()} is {distance[i]:.3g} m from the nearest node (tolerance "
             f"{tol:.3g} m): put a node there, or use candidate_pairs"
         )
     return nearest.astype(np.int32)
@@ -312,11 +320,15 @@ def candidate_pairs(
     if len(segments) == 0 or len(nb) == 0:
         raise ValueError("each beam needs at least one cell (two nodes) of V")
     x = nodes.positions
-    dist, t = _closest_on_segments(x[nb], x[segments[:, 0]], x[segments[:, 1]])
-    best = dist.argmin(axis=1)
-    gap = dist[np.arange(len(nb)), best] - radius_a - radius_b
+    gap = np.empty(len(nb))
+    a = np.empty(len(nb), dtype=np.int32)
+    for rows in _chunks(len(nb), len(segments)):
+        dist, t = _closest_on_segments(x[nb[rows]], x[segments[:, 0]], x[segments[:, 1]])
+        best = dist.argmin(axis=1)
+        k = np.arange(len(best))
+        gap[rows] = dist[k, best] - radius_a - radius_b
+        a[rows] = np.where(t[k, best] < 0.5, segments[best, 0], segments[best, 1])
     near = gap <= reach
-    a = np.where(t[np.arange(len(nb)), best] < 0.5, segments[best, 0], segments[best, 1])
     keep = np.flatnonzero(near)
     if not line:
         keep = _closest_of_each_run(nb, near, gap, nodes)

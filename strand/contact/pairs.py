@@ -47,6 +47,7 @@ __all__ = [
     "node_pairs",
     "candidate_pairs",
     "contact_terms",
+    "crossing_angle",
     "hertz_laws",
 ]
 
@@ -180,9 +181,7 @@ class NodePairs:
     @property
     def crossing_angle(self) -> Array:
         """(P,) angle between the two beams at the pair, rad, in [0, π/2]."""
-        t = self.tangents
-        cos = np.abs(np.einsum("pi,pi->p", t[:, 0], t[:, 1]))
-        return np.arccos(np.clip(cos, 0.0, 1.0))
+        return crossing_angle(self.tangents)
 
     def stencil(self, normal: str) -> tuple[Blocks, Array]:
         """The nodes (P, k) and their positions (P, k, 3) that the contact normal ``normal``
@@ -198,6 +197,12 @@ class NodePairs:
                 for f in fields(self)
             }
         )
+
+
+def crossing_angle(tangents) -> Array:
+    """Angle (rad, in [0, π/2]) between the unit tangents (P, 2, 3) of the two beams of pairs."""
+    cos = np.abs(np.einsum("pi,pi->p", tangents[:, 0], tangents[:, 1]))
+    return np.arccos(np.clip(cos, 0.0, 1.0))
 
 
 def _per_pair(value, n: int, name: str) -> Array:

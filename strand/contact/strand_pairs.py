@@ -14,7 +14,7 @@ import numpy.typing as npt
 from ..geometry import LINE, POINT, StrandGeometry
 from .element import ContactGroup, ContactSettings
 from .laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
-from .pairs import NodePairs, contact_terms
+from .pairs import NodePairs, contact_terms, crossing_angle
 
 __all__ = ["strand_pairs", "contact_groups", "pair_laws"]
 
@@ -87,9 +87,7 @@ def pair_laws(
     inner, outer = pairs.interface[sel], pairs.interface[sel] + 1
     E_a, nu_a = (np.array([getattr(w, key) for w in wires])[inner] for key in ("E", "nu"))
     E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
-    cos_beta = np.abs(np.einsum("pi,pi->p", tangents[:, 0], tangents[:, 1]))
-    beta = np.arccos(np.clip(cos_beta, 0.0, 1.0))
     return hertz_mindlin(
-        line, pairs.radius_a[sel], pairs.radius_b[sel], beta, pairs.tributary[sel],
+        line, pairs.radius_a[sel], pairs.radius_b[sel], crossing_angle(tangents), pairs.tributary[sel],
         E_a, nu_a, E_b, nu_b, mu if settings.friction else None,
     )  # fmt: skip

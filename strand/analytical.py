@@ -33,6 +33,15 @@ For a linear law δ = P/(2T)·[a − (2/k) tanh(ka/2)], a = L/2, k = √(T/EI).
 strand (helix radii fixed): each wire's strain ξ, curvature and twist changes from the strand's
 strain ε and twist rate θ′, its tension T = EAξ, moments G′ = EIΔκ′, H = GJΔτ, shear
 N′ = Hκ′ − G′τ (Love), summed into the strand's F and M; linearised numerically.
+
+**Poffenberger–Swart** (``poffenberger_swart``; Poffenberger & Swart, *Differential displacement
+and dynamic conductor strain*, IEEE Trans. PAS 84, 1965; IEEE Std 1966): the strand as a beam of
+stiffness EI_min under tension T leaving a clamp, w″ ∝ e^{−px}, p = √(T/EI_min), so that the
+displacement Y at x from the last point of contact fixes the curvature there; the outer wire's
+idealised stress amplitude (zero to peak) is σ_a = K Y_b for the peak-to-peak displacement Y_b,
+
+    K = E_a d_a p² / (4 (e^{−px} − 1 + px)),   x = 89 mm (3.5 in) by the standard.
+
 Units: m, N, N m, 1/m.
 """
 
@@ -55,6 +64,8 @@ __all__ = [
     "TensionedBeam",
     "clamped_deflection",
     "costello_stiffness",
+    "POFFENBERGER_SWART_DISTANCE",
+    "poffenberger_swart",
 ]
 
 Array = npt.NDArray[np.float64]
@@ -375,3 +386,20 @@ def costello_stiffness(cable: Cable, step: float = 1e-7) -> Array:
     twist_step = step / max(lay.radius for lay in cable.layers)
     d_twist = (resultants(0.0, twist_step) - resultants(0.0, -twist_step)) / (2 * twist_step)
     return np.column_stack([d_eps, d_twist])
+
+
+#: m, where Poffenberger–Swart's Y_b is measured from the last point of contact (3.5 in)
+POFFENBERGER_SWART_DISTANCE = 0.089
+
+
+def poffenberger_swart(
+    cable: Cable, tension: float, distance: float = POFFENBERGER_SWART_DISTANCE,
+    variant: str = "EPRI",
+) -> float:  # fmt: skip
+    """K (Pa/m) of σ_a = K Y_b: the outer wires' stress amplitude (zero to peak) per peak-to-peak
+    displacement Y_b at ``distance`` (m) from the clamp, under ``tension`` (N), with EI_min of
+    ``variant`` and the outer layer's E and diameter."""
+    outer = cable.layers[-1].wire
+    p = np.sqrt(tension / ei_min(cable, variant))
+    px = p * distance
+    return float(outer.E * outer.diameter * p**2 / (4 * (np.exp(-px) - 1 + px)))

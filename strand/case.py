@@ -47,6 +47,18 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     vtx = true                # with fields: also VTX (ADIOS2 .bp; as large again, ~250 MB here)
     plots = true              # PNG figures at the end
 
+    [fatigue]
+    outputs = true            # contact pair and wire section histories, and the fatigue report
+    sn_curve = "cigre-sbl-multilayer"   # or "cigre-sbl-single-layer", or "custom" with
+    sn_A = 450.0              #   σ_a = sn_A N^sn_b (MPa) up to sn_knee cycles,
+    sn_b = -0.2
+    sn_knee = 2e7
+    sn_A2 = 263.0             #   sn_A2 N^sn_b2 beyond
+    sn_b2 = -0.17
+    sn_layers = []            # layers (0 = core) the curve applies to; [] = those with E < 100 GPa
+    surface_points = 16       # points around each wire's circumference (ranges within 2 %)
+    clamp_distance = 0.089    # m, Poffenberger–Swart's distance from the clamp (3.5 in)
+
 Unknown keys and bad values are errors naming the file and the key, raised before any computing.
 """
 
@@ -67,6 +79,7 @@ __all__ = [
     "LoadSettings",
     "StepSettings",
     "OutputSettings",
+    "FatigueSettings",
     "load_case",
     "case_from_dict",
     "parse_settings",
@@ -122,6 +135,35 @@ class OutputSettings:
 
 
 @dataclass(frozen=True)
+class FatigueSettings:
+    outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
+    sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES) or "custom"
+    sn_A: float = 450.0  # MPa, custom: σ_a = A N^b up to the knee
+    sn_b: float = -0.2
+    sn_knee: float = 2e7  # cycles
+    sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
+    sn_b2: float = -0.17
+    sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
+    surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
+    clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
+
+    def curve(self):
+        """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
+        from .fatigue.sn import SN_CURVES, SNCurve
+
+        if self.sn_curve == "custom":
+            return SNCurve("custom (case file)", self.sn_A, self.sn_b, self.sn_knee, self.sn_A2,
+                           self.sn_b2, "the case file")  # fmt: skip
+        return SN_CURVES[self.sn_curve]
+
+    def layers(self, cable: Cable) -> list[int]:
+        """The layers (0 = core) whose wires the S–N curve applies to."""
+        if self.sn_layers:
+            return [int(i) for i in self.sn_layers]
+        return [i for i, lay in enumerate(cable.layers) if lay.wire.E < 100e9]
+
+
+@dataclass(frozen=True)
 class Case:
     cable: Cable
     mesh: MeshSettings = field(default_factory=MeshSettings)
@@ -129,6 +171,7 @@ class Case:
     load: LoadSettings = field(default_factory=LoadSettings)
     steps: StepSettings = field(default_factory=StepSettings)
     output: OutputSettings = field(default_factory=OutputSettings)
+    fatigue: FatigueSettings = field(default_factory=FatigueSettings)
     source: str = "built-in default"
 
 
@@ -138,10 +181,11 @@ SECTIONS = {
     "load": LoadSettings,
     "steps": StepSettings,
     "output": OutputSettings,
+    "fatigue": FatigueSettings,
 }
 
 #: settings that may be zero or negative (all other numbers must be positive)
-_SIGNED = {("load", "lateral"), ("load", "curvature")}
+_SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 
 
 def _value(section: str, key: str, value, default):
@@ -254,6 +298,26 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
     if load.kind == "bending" and load.zone >= length:
         raise CaseError(
             f"{source}: [load] zone = {load.zone} m must be shorter than [mesh] length = {length} m"
+        )
+    fatigue = sections["fatigue"]
+    from .fatigue.sn import SN_CURVES
+
+    if fatigue.sn_curve not in (*SN_CURVES, "custom"):
+        raise CaseError(
+            f"{source}: [fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
+            f'{sorted(SN_CURVES)} or "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2)'
+        )
+    try:
+        fatigue.curve()
+    except ValueError as e:
+        raise CaseError(f"{source}: [fatigue] {e}") from None
+    bad = [
+        i for i in fatigue.sn_layers if not float(i).is_integer() or not 0 <= i < len(cable.layers)
+    ]
+    if bad:
+        raise CaseError(
+            f"{source}: [fatigue] sn_layers = {list(fatigue.sn_layers)}: layers are numbered 0 "
+            f"(core) to {len(cable.layers) - 1}"
         )
     return Case(cable, **sections, source=source)
 

@@ -102,14 +102,24 @@ class StrandModel:
         return np.arange(offsets[0], offsets[1])
 
     def pair_results(self) -> dict[str, Array]:
-        """Gap (m), normal force (N), traction magnitude (N), slipping flag per geometry pair."""
+        """Per geometry pair: gap (m), normal force (N), traction magnitude (N), slipping flag,
+        and the vectors (P, 3) of the friction force ``friction`` (N, on a), the normal a → b
+        ``normal``, and the friction history since t = 0 (``FrictionHistory``): ``slip`` and
+        ``sliding`` (m), with the dissipated energy ``work`` (J)."""
         n = len(self.geometry.pairs)
-        out = {k: np.zeros(n) for k in ("gap", "force", "traction")}
+        out = {k: np.zeros(n) for k in ("gap", "force", "traction", "work")}
         out["slipping"] = np.zeros(n, dtype=bool)
+        for k in ("friction", "normal", "slip", "sliding"):
+            out[k] = np.zeros((n, 3))
         for g in self.contact:
-            s = g.state
+            s, h = g.state, g.history
             out["gap"][g.index] = s.gap
             out["force"][g.index] = s.force
             out["traction"][g.index] = np.linalg.norm(s.traction, axis=1)
             out["slipping"][g.index] = s.slipping
+            out["friction"][g.index] = s.traction
+            out["normal"][g.index] = s.normal
+            out["slip"][g.index] = h.slip
+            out["sliding"][g.index] = h.sliding
+            out["work"][g.index] = h.work
         return out

@@ -342,3 +342,63 @@ def bending_figure(case, folder, note: str = "") -> Path:
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=7)
     return _save_figure(fig, folder / "moment_curvature.png", note)
+
+
+def fatigue_figures(folder, report) -> list[Path]:
+    """The fatigue report's figures in ``folder``: a fretting map per interface (initial z against
+    the angle about the axis, colour = Ruiz's F₂ of the worst cycle, crosses where the pair
+    slipped) and the surface stress range along every outer wire (with Poffenberger–Swart's
+    amplitude × 2 at the clamp)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    from .history import read_history
+
+    folder = Path(folder)
+    st = read_history(folder / "contact_pairs.h5").static
+    c = report.crossings
+    interfaces = np.unique(st["interface"])
+    fig, axes = plt.subplots(1, len(interfaces), figsize=(4 * len(interfaces), 5), sharey=True,
+                             squeeze=False)  # fmt: skip
+    f2 = 1e-6 * c["ruiz_f2"]
+    positive = f2[f2 > 0]
+    norm = LogNorm(positive.max() * 1e-4, positive.max()) if len(positive) else None
+    for ax, i in zip(axes[0], interfaces, strict=True):
+        m = st["interface"] == i
+        sc = ax.scatter(st["angle"][m], 1e3 * st["z"][m], c=np.maximum(f2[m], 1e-30), s=4,
+                        cmap="inferno", norm=norm)  # fmt: skip
+        slid = m & (c["slip_amplitude"] > 0.05e-6)
+        ax.scatter(st["angle"][slid], 1e3 * st["z"][slid], marker="x", s=6, c="tab:cyan", lw=0.5)
+        ax.set(title=f"interface {i}|{i + 1}", xlabel="angle about the axis (°)", xlim=(-180, 180))
+    axes[0, 0].set_ylabel("z (mm)")
+    fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
+    fig.suptitle("fretting map (× slip amplitude > 0.05 µm)")
+    paths = [_save_figure(fig, folder / "fretting_map.png", None, False)]
+
+    s, e = read_history(folder / "wire_sections.h5").static, report.elements
+    outer = s["layer"] == s["layer"].max()
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for w in np.unique(s["wire"][outer]):
+        m = s["wire"] == w
+        ax.plot(1e3 * s["z"][m], 1e-6 * e["range"][m], lw=0.6, alpha=0.7)
+    ps = report.poffenberger_swart
+    if ps is not None:
+        ax.plot(
+            [0],
+            [2e-6 * ps["sigma_a"]],
+            "k*",
+            ms=10,
+            label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)",
+        )
+        ax.legend()
+    ax.set(
+        xlabel="z (mm)",
+        ylabel="largest surface stress range (MPa)",
+        title="outer wires: surface stress range over the history (one line per wire)",
+    )
+    ax.grid(alpha=0.3)
+    paths.append(_save_figure(fig, folder / "stress_range.png", None, True))
+    return paths

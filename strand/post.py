@@ -51,6 +51,8 @@ class CellResults:
     axial: Array
     force: Array
     moment: Array
+    tangent: Array | None = None  # (n, 3) current unit tangent
+    radial: Array | None = None  # (n, 3) current midpoint less the core's point at the same z
 
 
 class CellEvaluator:
@@ -99,9 +101,12 @@ def cell_results(
     d = np.asarray(direction, float) / np.linalg.norm(direction)
     s = np.cross([0.0, 0.0, 1.0], d)
     phi = np.degrees(np.arctan2(r @ d, r @ s))
+    tangent = x[g.cells[:, 1]] - x[g.cells[:, 0]]
+    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
     return CellResults(
-        g.cell_wire, g.cell_layer, z0, phi, values[:, 0], values[:, 1:4], values[:, 4:7]
-    )
+        g.cell_wire, g.cell_layer, z0, phi, values[:, 0], values[:, 1:4], values[:, 4:7],
+        tangent, r,
+    )  # fmt: skip
 
 
 def section_resultants(model: StrandModel, cells: CellResults, z: float) -> tuple[Array, Array]:

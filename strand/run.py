@@ -45,11 +45,13 @@ from .recorders import (  # isort: skip
     BendingTable,
     FieldSeries,
     KeyStates,
+    PairHistory,
     RunStep,
     SlipTable,
     SmallSlidingMonitor,
     StepContext,
     StepTable,
+    WireSectionHistory,
 )
 from .setups.bending import UniformBendingTest  # isort: skip
 from .setups.saddle import SaddleTest  # isort: skip
@@ -217,6 +219,12 @@ def run_case(
         recorders.append(SmallSlidingMonitor(problem.model, stream, result.warnings))
     if case.output.fields:
         recorders.append(FieldSeries(folder, problem, vtx=case.output.vtx))
+    if case.fatigue.outputs:
+        initial = cell_results(problem.model, su.direction, evaluator)
+        recorders += [
+            PairHistory(folder, problem.model, cycle),
+            WireSectionHistory(folder, problem.model, initial, su.direction, cycle),
+        ]
     result.setup_seconds = time.perf_counter() - t_start
     progress = _Progress(
         programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3), "curvature": ("1/m", 1.0)},
@@ -275,13 +283,45 @@ def run_case(
     summary = summarize(case, result, problem)
     (folder / "summary.txt").write_text(summary)
     print(summary, file=stream, flush=True)
+    report = None
+    if case.fatigue.outputs and len(result.cycle_steps):
+        report = run_fatigue_report(case, result, stream)
     if case.output.plots:
-        from .plots import results_figures
+        from .plots import fatigue_figures, results_figures
 
-        for path in results_figures(case, result, problem):
+        paths = results_figures(case, result, problem)
+        if report is not None:
+            paths += fatigue_figures(folder, report)
+        for path in paths:
             print(f"figure: {path}", file=stream)
     problem.solver.destroy()
     return result
+
+
+def run_fatigue_report(case: Case, result: RunResult, stream):
+    """The fatigue report of the run's histories (``strand.fatigue_report``): ``fatigue.txt`` and
+    the CSV files, with its own cost beside the run's."""
+    from .fatigue_report import ReportError, fatigue_report
+
+    t0 = time.perf_counter()
+    try:
+        report = fatigue_report(
+            result.folder, case.cable, case.load.tension, case.fatigue, case.load.direction,
+            clamp=case.load.kind == "saddle",
+        )  # fmt: skip
+    except ReportError as e:
+        print(f"strand: no fatigue report: {e}", file=stream, flush=True)
+        return None
+    seconds = time.perf_counter() - t0
+    size = sum((result.folder / f).stat().st_size for f in ("contact_pairs.h5", "wire_sections.h5"))
+    cost = (
+        f"fatigue outputs: histories {size / 1e6:.1f} MB, recording {result.timings['output']:.1f} s "
+        f"(all per-step outputs) and report {seconds:.1f} s, against {result.seconds:.0f} s for the run"
+    )
+    with open(result.folder / "fatigue.txt", "a") as f:
+        f.write(cost + "\n")
+    print(report.text + cost, file=stream, flush=True)
+    return report
 
 
 def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:

@@ -11,7 +11,10 @@ small-sliding ``ContactGroup``, the large-sliding ``SlidingGroup``); the base ap
   Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗(∂p/∂q) — unsymmetric in slip.
 
 History (traction, normal, normal force, and what the subclass keeps) is committed after converged
-steps only. Units: m, N, rad.
+steps only, with the friction history of each pair (``FrictionHistory``): the relative tangential
+displacement of its surface points summed over the steps, the part of it that is Coulomb sliding
+(Δg_s = Δg_T − Δt/K_T, the slip less the change of the elastic stick), and the energy friction
+dissipated, Σ t·Δg_s. Units: m, N, rad, J.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ import numpy.typing as npt
 
 from .laws import FrictionLaw, NormalLaw
 
-__all__ = ["ContactState", "PairKinematics", "PairGroup", "tangential_part"]
+__all__ = ["ContactState", "FrictionHistory", "PairKinematics", "PairGroup", "tangential_part"]
 
 Array = npt.NDArray[np.float64]
 
@@ -39,6 +42,37 @@ class ContactState:
     traction: Array
     normal: Array
     slipping: npt.NDArray[np.bool_]
+
+
+@dataclass
+class FrictionHistory:
+    """Per pair, summed over the converged steps since t = 0: ``slip`` (P, 3), the relative
+    tangential displacement of the two surface points (m); ``sliding`` (P, 3), its Coulomb part
+    (m; zero while the pair sticks); ``work`` (P,), the energy dissipated by friction (J)."""
+
+    slip: Array
+    sliding: Array
+    work: Array
+
+    @classmethod
+    def zeros(cls, n_pairs: int) -> FrictionHistory:
+        return cls(np.zeros((n_pairs, 3)), np.zeros((n_pairs, 3)), np.zeros(n_pairs))
+
+    def copy(self) -> FrictionHistory:
+        return FrictionHistory(self.slip.copy(), self.sliding.copy(), self.work.copy())
+
+
+def friction_increment(
+    slip: Array, k_t: Array, traction: Array, t_old: Array, n_old: Array
+) -> tuple[Array, Array]:
+    """Coulomb sliding Δg_s (P, 3) and dissipated energy t·Δg_s (P,) of a converged step with
+    slip Δg_T, stick stiffness K_T and traction t, from the traction t_old at the step's start
+    (normal n_old): Δg_s = Δg_T − (t − P_n t_old)/K_T; zero where K_T = 0 (not in contact at
+    the step's start, so nothing to slide against)."""
+    closed = k_t > 0
+    elastic = (traction - tangential_part(t_old, n_old)) / np.where(closed, k_t, 1.0)[:, None]
+    sliding = np.where(closed[:, None], slip - elastic, 0.0)
+    return sliding, np.einsum("pi,pi->p", traction, sliding)
 
 
 @dataclass
@@ -85,6 +119,8 @@ class PairGroup:
         self._n_old = n0.copy()
         self._p_old = np.zeros(n_pairs)
         self._last: Array | None = None  # W of the last evaluation
+        self._friction: tuple[Array, Array] | None = None  # (Δg_T, K_T) of the last evaluation
+        self.history = FrictionHistory.zeros(n_pairs)
         self.state = ContactState(
             np.zeros(n_pairs), np.zeros(n_pairs), np.zeros((n_pairs, 3)), n0.copy(),
             np.zeros(n_pairs, dtype=bool),
@@ -115,14 +151,16 @@ class PairGroup:
         slipping = np.zeros(len(p), dtype=bool)
         if self.friction:
             S, dq = kin.slip()
-            f_t, K_t, traction, slipping = self.friction_law.terms(
+            ft = self.friction_law.terms(
                 S, dq, p, dp_dg[:, None] * G, self._p_old, self._t_old, self._n_old,
                 self.normal_law, jacobian,
             )  # fmt: skip
             m = S.shape[2]
-            f[:, :m] += f_t
+            f[:, :m] += ft.residual
             if jacobian:
-                K[:, :m, :] += K_t
+                K[:, :m, :] += ft.tangent
+            traction, slipping = ft.traction, ft.slipping
+            self._friction = (ft.slip, ft.stiffness)
         self.state = ContactState(kin.gap, p, traction, kin.normal, slipping)
         self._last = W
         return f, K
@@ -132,6 +170,14 @@ class PairGroup:
         if self._last is None:
             return
         n = self.state.normal
+        if self._friction is not None:
+            slip, k_t = self._friction
+            sliding, work = friction_increment(
+                slip, k_t, self.state.traction, self._t_old, self._n_old
+            )
+            h = self.history
+            self.history = FrictionHistory(h.slip + slip, h.sliding + sliding, h.work + work)
+            self._friction = None  # counted once
         self._t_old = tangential_part(self.state.traction, n)  # onto the new tangent plane
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
@@ -140,6 +186,7 @@ class PairGroup:
     def rollback(self) -> None:
         """Forget the current step (history is only changed by ``commit``)."""
         self._last = None
+        self._friction = None
         self._rollback_kinematics()
 
     def _commit_kinematics(self, W: Array) -> None:

@@ -11,7 +11,9 @@ integrals, with R_x = 1/(2A) ≥ R_y = 1/(2B), α_r = R_x/R_y, 1/R = 1/R_x + 1/R
     k = α_r^{2/π},  ℰ = 1 + (π/2 − 1)/α_r,  ℱ = π/2 + (π/2 − 1) ln α_r,
     δ = ℱ [9/(2ℰR) (P/(π k E′))²]^{1/3},  E′ = 2E*,  1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂,
 
-so c = π k E′ (2ℰR/9)^{1/2} / ℱ^{3/2} (exact for a sphere on a flat; a few % otherwise). Mindlin's
+so c = π k E′ (2ℰR/9)^{1/2} / ℱ^{3/2} (exact for a sphere on a flat; a few % otherwise). The
+contact ellipse has the semi-axes a = (6k²ℰPR/(πE′))^{1/3} along the direction of R_x and
+b = (6ℰPR/(πkE′))^{1/3} across it, and the peak pressure p₀ = 3P/(2πab). Mindlin's
 initial tangential stiffness of a contact area of radius a is k_T = 8a/[(2 − ν₁)/G₁ + (2 − ν₂)/G₂]
 against the normal k_N = dP/dδ = 2aE*: their ratio depends on the materials alone.
 """
@@ -21,7 +23,14 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["crossed_cylinders", "point_coefficient", "compliance", "mindlin_ratio"]
+__all__ = [
+    "crossed_cylinders",
+    "point_coefficient",
+    "compliance",
+    "mindlin_ratio",
+    "contact_ellipse",
+    "line_contact",
+]
 
 Array = npt.NDArray[np.float64]
 
@@ -59,3 +68,32 @@ def mindlin_ratio(E1, nu1, E2, nu2) -> Array:
     E1, nu1, E2, nu2 = (np.asarray(v, float) for v in (E1, nu1, E2, nu2))
     g1, g2 = E1 / (2 * (1 + nu1)), E2 / (2 * (1 + nu2))
     return 4 * (compliance(E1, nu1) + compliance(E2, nu2)) / ((2 - nu1) / g1 + (2 - nu2) / g2)
+
+
+def contact_ellipse(r1, r2, beta, E1, nu1, E2, nu2, force) -> tuple[Array, Array, Array]:
+    """Hertz contact of crossed cylinders under a normal ``force`` P (N): the semi-axes a ≥ b (m)
+    and the peak pressure p₀ = 3P/(2πab) (Pa) (Hamrock–Brewe fits; exact for a sphere on a
+    flat). Zero where P ≤ 0."""
+    rx, ry = crossed_cylinders(r1, r2, beta)
+    alpha = rx / ry
+    k = alpha ** (2 / np.pi)
+    ell_e = 1 + (np.pi / 2 - 1) / alpha
+    r = 1 / (1 / rx + 1 / ry)
+    e_prime = 2 / (compliance(E1, nu1) + compliance(E2, nu2))
+    P = np.maximum(np.asarray(force, float), 0.0)
+    base = 6 * ell_e * P * r / (np.pi * e_prime)
+    a, b = np.cbrt(base * k**2), np.cbrt(base / k)
+    p0 = np.divide(3 * P, 2 * np.pi * a * b, out=np.zeros_like(P), where=P > 0)
+    return a, b, p0
+
+
+def line_contact(r1, r2, E1, nu1, E2, nu2, line_load) -> tuple[Array, Array]:
+    """Hertz contact of parallel cylinders under a ``line_load`` q (N/m) (Johnson 1985, §4.3):
+    half-width b = (4qR/(πE*))^{1/2} (m), 1/R = 1/R₁ + 1/R₂, and peak pressure p₀ = 2q/(πb) (Pa).
+    Zero where q ≤ 0."""
+    r1, r2 = np.asarray(r1, float), np.asarray(r2, float)
+    q = np.maximum(np.asarray(line_load, float), 0.0)
+    r = r1 * r2 / (r1 + r2)
+    b = np.sqrt(4 * q * r * (compliance(E1, nu1) + compliance(E2, nu2)) / np.pi)
+    p0 = np.divide(2 * q, np.pi * b, out=np.zeros_like(q), where=q > 0)
+    return b, p0

@@ -41,6 +41,7 @@ __all__ = [
     "ElasticSlip",
     "Mindlin",
     "CoulombResult",
+    "FrictionTerms",
     "coulomb_return",
     "normal_force",
     "tangential_stiffness",
@@ -237,6 +238,20 @@ def coulomb_return(
     return CoulombResult(traction, d_slip, d_pressure, slipping)
 
 
+@dataclass
+class FrictionTerms:
+    """What a friction law adds at an evaluation: residual (P, m) and tangent (P, m, M) (None
+    without the Jacobian), traction t (P, 3), N, slipping flags, the slip Δg_T (P, 3), m, of the
+    surface points since the last converged step, and the stick stiffness K_T (P,), N/m."""
+
+    residual: Array
+    tangent: Array | None
+    traction: Array
+    slipping: npt.NDArray[np.bool_]
+    slip: Array
+    stiffness: Array
+
+
 @dataclass(frozen=True)
 class FrictionLaw(ABC):
     """Coulomb friction (coefficients ``mu`` (P,)) with an elastic stick branch."""
@@ -251,23 +266,27 @@ class FrictionLaw(ABC):
     def stiffness(self, p_start: Array, normal: NormalLaw) -> Array:
         """K_T (P,) in N/m from the normal forces at the start of the step."""
 
-    def terms(self, S, dq, p, dp_dq, p_old, t_old, n_old, normal: NormalLaw, jacobian: bool):
+    def terms(
+        self, S, dq, p, dp_dq, p_old, t_old, n_old, normal: NormalLaw, jacobian: bool
+    ) -> FrictionTerms:
         """Friction of all pairs on a slip operator S (P, 3, m): Δg_T = S Δq.
 
         Returns the residual Sᵀt (P, m), the tangent Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗∂p/∂q (P, m, M)
         over all M dofs of the pair's layout (``dp_dq`` (P, M); None without ``jacobian``), the
-        traction and the slipping flags (pairs at the cap with a positive normal force).
+        traction, the slipping flags (pairs at the cap with a positive normal force), the slip
+        Δg_T and the stick stiffness K_T of the step.
         """
         mu = np.broadcast_to(np.asarray(self.mu, float), p.shape)
         slip = np.einsum("pij,pj->pi", S, dq)
-        ret = coulomb_return(t_old, slip, n_old, p, mu, self.stiffness(p_old, normal))
+        k_t = self.stiffness(p_old, normal)
+        ret = coulomb_return(t_old, slip, n_old, p, mu, k_t)
         f = np.einsum("pij,pi->pj", S, ret.traction)
         K = None
         if jacobian:
             St = S.transpose(0, 2, 1)
             K = np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq)
             K[:, :, : S.shape[2]] += St @ ret.d_slip @ S
-        return f, K, ret.traction, ret.slipping & (p > 0)
+        return FrictionTerms(f, K, ret.traction, ret.slipping & (p > 0), slip, k_t)
 
 
 @dataclass(frozen=True)

@@ -16,10 +16,10 @@ from .element import ContactGroup, ContactSettings
 from .laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
 from .pairs import NodePairs, contact_terms, crossing_angle
 
-__all__ = ["strand_pairs", "contact_groups", "pair_laws"]
+__all__ = ["strand_pairs", "contact_groups", "pair_laws", "wire_neighbours"]
 
 
-def _neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
+def wire_neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
     """Input indices of the previous and next node on the same wire (the node itself at ends)."""
     wire = geometry.point_wire[nodes]
     lo, hi = geometry.wire_offsets[wire], geometry.wire_offsets[wire + 1] - 1
@@ -32,7 +32,7 @@ def strand_pairs(geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32]
     pairs = geometry.pairs
     sel = np.asarray(sel)
     a, b = pairs.a[sel], pairs.b[sel]
-    points = np.column_stack([a, b, *_neighbours(geometry, a), *_neighbours(geometry, b)])
+    points = np.column_stack([a, b, *wire_neighbours(geometry, a), *wire_neighbours(geometry, b)])
     blocks = input_to_block[points]
     if np.any(blocks < 0):
         raise NotImplementedError(

@@ -346,8 +346,8 @@ def bending_figure(case, folder, note: str = "") -> Path:
 
 def fatigue_figures(folder, report) -> list[Path]:
     """The fatigue report's figures in ``folder``: a fretting map per interface (initial z against
-    the angle about the axis, colour = Ruiz's F₂ of the worst cycle, crosses where the pair
-    slipped) and the surface stress range along every outer wire (with Poffenberger–Swart's
+    the angle about the axis, colour = Ruiz's F₂ of the worst cycle, grey where the pair stuck
+    throughout) and the surface stress range along every outer wire (with Poffenberger–Swart's
     amplitude × 2 at the clamp)."""
     import matplotlib
 
@@ -366,16 +366,18 @@ def fatigue_figures(folder, report) -> list[Path]:
     f2 = 1e-6 * c["ruiz_f2"]
     positive = f2[f2 > 0]
     norm = LogNorm(positive.max() * 1e-4, positive.max()) if len(positive) else None
+    sc = None
     for ax, i in zip(axes[0], interfaces, strict=True):
         m = st["interface"] == i
-        sc = ax.scatter(st["angle"][m], 1e3 * st["z"][m], c=np.maximum(f2[m], 1e-30), s=4,
-                        cmap="inferno", norm=norm)  # fmt: skip
-        slid = m & (c["slip_amplitude"] > 0.05e-6)
-        ax.scatter(st["angle"][slid], 1e3 * st["z"][slid], marker="x", s=6, c="tab:cyan", lw=0.5)
+        stuck, slid = m & (f2 <= 0), m & (f2 > 0)
+        ax.scatter(st["angle"][stuck], 1e3 * st["z"][stuck], s=3, c="0.75", lw=0)
+        sc = ax.scatter(st["angle"][slid], 1e3 * st["z"][slid], c=f2[slid], s=5, cmap="inferno",
+                        norm=norm, lw=0)  # fmt: skip
         ax.set(title=f"interface {i}|{i + 1}", xlabel="angle about the axis (°)", xlim=(-180, 180))
     axes[0, 0].set_ylabel("z (mm)")
-    fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
-    fig.suptitle("fretting map (× slip amplitude > 0.05 µm)")
+    if norm is not None:
+        fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
+    fig.suptitle("fretting map: pairs that slid, coloured by F₂ (grey: stuck throughout)")
     paths = [_save_figure(fig, folder / "fretting_map.png", None, False)]
 
     s, e = read_history(folder / "wire_sections.h5").static, report.elements

@@ -9,6 +9,7 @@ every step written so far), and closes in ``close``. Units: SI, named in the col
 from __future__ import annotations
 
 import csv
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
@@ -266,20 +267,23 @@ class _CycleHistory:
         self.parameter = parameter  # the cycle's load parameter, written with every step
         self._tensioned = None  # (RunStep, arrays, load) of the latest tension step
         self.started = False
+        self.seconds = 0.0  # wall time spent recording (s)
 
     def _arrays(self, ctx: StepContext) -> dict:
         raise NotImplementedError
 
     def record(self, ctx: StepContext) -> None:
+        t0 = time.perf_counter()
         load = ctx.problem.setup.get(self.parameter)
         if not ctx.cycle:
             self._tensioned = (ctx.step, self._arrays(ctx), load)
-            return
-        if not self.started:
-            self.started = True
-            if self._tensioned is not None:
-                self._write(*self._tensioned)
-        self._write(ctx.step, self._arrays(ctx), load)
+        else:
+            if not self.started:
+                self.started = True
+                if self._tensioned is not None:
+                    self._write(*self._tensioned)
+            self._write(ctx.step, self._arrays(ctx), load)
+        self.seconds += time.perf_counter() - t0
 
     def _write(self, step: RunStep, arrays: dict, load: float) -> None:
         self.writer.write(step.number, step.time, arrays, load=load)

@@ -1,0 +1,95 @@
+"""What each per-step output costs at Cardinal size (1 m, 61 wires, 7,386 pairs, 21,521 elements).
+
+Run: .venv/bin/python benchmarks/fatigue_outputs.py [steps]
+Pulls the strand to 40 kN and takes one lateral step (250 N, friction on), then records that state
+``steps`` times (default 10) with every recorder of a run, side by side, into a scratch folder:
+time per step (s) and disk per step (MB) of the fatigue histories (contact pairs with their ParaView
+index, wire sections) beside the axial-force CSV and the field series. The fatigue report's own
+time is in every run's ``fatigue.txt`` (it needs a cycle, which one repeated state is not).
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from strand.cable import cardinal
+from strand.contact.element import ContactSettings
+from strand.geometry import build_geometry
+from strand.post import CellEvaluator, cell_results
+from strand.problem import StrandProblem
+from strand.recorders import (
+    AxialForceTable,
+    FieldSeries,
+    PairHistory,
+    RunStep,
+    StepContext,
+    WireSectionHistory,
+)
+from strand.solver import LoadStepper, NewtonOptions
+
+
+def _size(paths) -> int:
+    total = 0
+    for p in paths:
+        p = Path(p)
+        total += sum(f.stat().st_size for f in p.rglob("*")) if p.is_dir() else p.stat().st_size
+    return total
+
+
+def main(steps: int = 10) -> None:
+    geometry = build_geometry(cardinal(), 1.0, 4e-3)
+    problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-2))
+    LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
+    problem.setup.set_lateral(250.0)
+    problem.solver.solve()
+    problem.solver.commit()
+    evaluator = CellEvaluator(problem.model)
+    direction = problem.setup.direction
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        initial = cell_results(problem.model, direction, evaluator)
+        recorders = {
+            "contact pairs (h5 + xdmf)": (
+                PairHistory(folder, problem.model, "lateral"),
+                ["contact_pairs.h5", "contact_points.xdmf"],
+            ),
+            "wire sections (h5)": (
+                WireSectionHistory(folder, problem.model, initial, direction, "lateral"),
+                ["wire_sections.h5"],
+            ),
+            "axial forces (csv)": (
+                AxialForceTable(folder, "lateral", "N"),
+                ["axial_forces.csv"],
+            ),
+            "fields (xdmf + vtx)": (FieldSeries(folder, problem), ["fields.h5", "fields.bp"]),
+        }
+        seconds = dict.fromkeys(recorders, 0.0)
+        t_cells = 0.0
+        for k in range(steps):
+            t0 = time.perf_counter()
+            cells = cell_results(problem.model, direction, evaluator)
+            t_cells += time.perf_counter() - t0
+            step = RunStep(k + 1, "leg 1", "lateral", 250.0, 1.0 + k, 1, 0, 0.0, 0.0, None)
+            ctx = StepContext(step, problem, k > 0, _cells=cells)
+            for name, (r, _) in recorders.items():
+                t0 = time.perf_counter()
+                r.record(ctx)
+                seconds[name] += time.perf_counter() - t0
+        for r, _ in recorders.values():
+            r.close()
+        print(f"Cardinal 1 m, 40 kN + 250 N, {steps} recorded steps (cell results: "
+              f"{t_cells / steps:.3f} s per step, shared)")  # fmt: skip
+        print(f"{'output':28s} {'s per step':>11s} {'MB per step':>12s}")
+        for name, (_, files) in recorders.items():
+            size = _size([folder / f for f in files]) / 1e6
+            print(f"{name:28s} {seconds[name] / steps:11.3f} {size / steps:12.2f}")
+    problem.solver.destroy()
+
+
+if __name__ == "__main__":
+    main(*(int(a) for a in sys.argv[1:2]))

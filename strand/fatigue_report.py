@@ -65,10 +65,8 @@ def _surface_angles(n: int) -> Array:
 
 def _stress_at(sections: History, cells, angle) -> Array:
     """σ (S, P) of elements ``cells`` (P,) at their surface angles ``angle`` (P,), rad."""
-    d = sections.static["diameter"][cells]
     N, m1, m2 = (sections[k][:, cells] for k in ("axial", "m1", "m2"))
-    r, A, I = d / 2, np.pi * d**2 / 4, np.pi * d**4 / 64
-    return N / A + (r / I) * (m1 * np.sin(angle) - m2 * np.cos(angle))
+    return surface_stress(N, m1, m2, sections.static["diameter"][cells], angle)
 
 
 def _pair_cells_and_angles(pairs: History, sections: History):
@@ -166,7 +164,8 @@ def element_results(sections: History, n_points: int, curve: SNCurve,
     element (rainflow on every point's stress history, elements of ``layers`` only)."""
     st = sections.static
     psi = _surface_angles(n_points)
-    sigma = surface_stress(sections["axial"], sections["m1"], sections["m2"], st["diameter"], psi)
+    N, m1, m2 = (sections[k][..., None] for k in ("axial", "m1", "m2"))
+    sigma = surface_stress(N, m1, m2, st["diameter"][:, None], psi)  # (S, E, n_points)
     hi, lo = sigma.max(axis=0), sigma.min(axis=0)  # (E, n_points)
     ranges = hi - lo
     worst = np.argmax(ranges, axis=1)

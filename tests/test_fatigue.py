@@ -179,7 +179,7 @@ def test_a_straight_wire_in_tension_or_in_bending_and_torsion_has_navier_and_sai
     d = 0.01  # beam_cases.D
     A, I = np.pi * d**2 / 4, np.pi * d**4 / 64
     psi = np.array([0.0, np.pi / 2, np.pi, 3 * np.pi / 2])
-    sigma = surface_stress(values[:, 0], m1, m2, d, psi)
+    sigma = surface_stress(values[:, :1], m1[:, None], m2[:, None], d, psi)
     expected = F / A + M * (d / 2) / I * np.cos(psi)
     scale = F / A + M * (d / 2) / I
     np.testing.assert_allclose(sigma, np.tile(expected, (len(cells), 1)), atol=1e-3 * scale)

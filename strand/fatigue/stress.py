@@ -42,14 +42,14 @@ def section_components(moment: Array, tangent: Array, e1: Array, e2: Array) -> A
     return np.column_stack([np.einsum("ij,ij->i", moment, e) for e in (e1, e2, t)])
 
 
-def surface_stress(axial, m1, m2, diameter, angles) -> Array:
-    """Axial stress σ (…, n_angles) at the surface points ``angles`` (rad) of sections with
-    axial force ``axial`` (N) and bending moments ``m1``, ``m2`` (N m); arrays broadcast."""
+def surface_stress(axial, m1, m2, diameter, angle) -> Array:
+    """Axial stress σ (Pa) at the surface point of ``angle`` ψ (rad) of sections with axial
+    force ``axial`` (N) and bending moments ``m1``, ``m2`` (N m); arrays broadcast (give the
+    angles an axis of their own for several points per section)."""
     d = np.asarray(diameter, float)
     r, A, I = d / 2, np.pi * d**2 / 4, np.pi * d**4 / 64
-    psi = np.asarray(angles, float)
-    N, m1, m2 = (np.asarray(v, float)[..., None] for v in (axial, m1, m2))
-    r, A, I = (np.asarray(v)[..., None] for v in (r, A, I))
+    psi = np.asarray(angle, float)
+    N, m1, m2 = (np.asarray(v, float) for v in (axial, m1, m2))
     return N / A + (r / I) * (m1 * np.sin(psi) - m2 * np.cos(psi))
 
 

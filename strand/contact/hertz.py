@@ -20,6 +20,8 @@ against the normal k_N = dP/dδ = 2aE*: their ratio depends on the materials alo
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import numpy.typing as npt
 
@@ -49,16 +51,34 @@ def crossed_cylinders(r1, r2, beta) -> tuple[Array, Array]:
     return 1 / (2 * a), 1 / (2 * b)
 
 
-def point_coefficient(r1, r2, beta, E1, nu1, E2, nu2) -> Array:
-    """c (N/m^{3/2}) of P = c δ^{3/2} for crossed cylinders (Hertz, Hamrock–Brewe fits)."""
+@dataclass(frozen=True)
+class _EllipticalContact:
+    """Hamrock–Brewe quantities of crossed cylinders: ellipticity k, elliptic integrals ℰ, ℱ,
+    curvature sum radius R (m) and E′ = 2E* (Pa)."""
+
+    k: Array
+    ell_e: Array
+    ell_f: Array
+    r: Array
+    e_prime: Array
+
+
+def _elliptical(r1, r2, beta, E1, nu1, E2, nu2) -> _EllipticalContact:
     rx, ry = crossed_cylinders(r1, r2, beta)
     alpha = rx / ry
-    k = alpha ** (2 / np.pi)
-    ell_e = 1 + (np.pi / 2 - 1) / alpha
-    ell_f = np.pi / 2 + (np.pi / 2 - 1) * np.log(alpha)
-    r = 1 / (1 / rx + 1 / ry)
-    e_prime = 2 / (compliance(E1, nu1) + compliance(E2, nu2))
-    return np.pi * k * e_prime * np.sqrt(2 * ell_e * r / 9) / ell_f**1.5
+    return _EllipticalContact(
+        alpha ** (2 / np.pi),
+        1 + (np.pi / 2 - 1) / alpha,
+        np.pi / 2 + (np.pi / 2 - 1) * np.log(alpha),
+        1 / (1 / rx + 1 / ry),
+        2 / (compliance(E1, nu1) + compliance(E2, nu2)),
+    )
+
+
+def point_coefficient(r1, r2, beta, E1, nu1, E2, nu2) -> Array:
+    """c (N/m^{3/2}) of P = c δ^{3/2} for crossed cylinders (Hertz, Hamrock–Brewe fits)."""
+    h = _elliptical(r1, r2, beta, E1, nu1, E2, nu2)
+    return np.pi * h.k * h.e_prime * np.sqrt(2 * h.ell_e * h.r / 9) / h.ell_f**1.5
 
 
 def mindlin_ratio(E1, nu1, E2, nu2) -> Array:
@@ -74,15 +94,10 @@ def contact_ellipse(r1, r2, beta, E1, nu1, E2, nu2, force) -> tuple[Array, Array
     """Hertz contact of crossed cylinders under a normal ``force`` P (N): the semi-axes a ≥ b (m)
     and the peak pressure p₀ = 3P/(2πab) (Pa) (Hamrock–Brewe fits; exact for a sphere on a
     flat). Zero where P ≤ 0."""
-    rx, ry = crossed_cylinders(r1, r2, beta)
-    alpha = rx / ry
-    k = alpha ** (2 / np.pi)
-    ell_e = 1 + (np.pi / 2 - 1) / alpha
-    r = 1 / (1 / rx + 1 / ry)
-    e_prime = 2 / (compliance(E1, nu1) + compliance(E2, nu2))
+    h = _elliptical(r1, r2, beta, E1, nu1, E2, nu2)
     P = np.maximum(np.asarray(force, float), 0.0)
-    base = 6 * ell_e * P * r / (np.pi * e_prime)
-    a, b = np.cbrt(base * k**2), np.cbrt(base / k)
+    base = 6 * h.ell_e * P * h.r / (np.pi * h.e_prime)
+    a, b = np.cbrt(base * h.k**2), np.cbrt(base / h.k)
     p0 = np.divide(3 * P, 2 * np.pi * a * b, out=np.zeros_like(P), where=P > 0)
     return a, b, p0
 

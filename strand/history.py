@@ -103,12 +103,13 @@ def read_history(path: str | Path) -> History:
     return History(static, numbers, times, values, arrays, attributes)
 
 
-_TYPES = {"f": ("Float", 4), "i": ("Int", 4), "u": ("UInt", 4)}
+_KINDS = {"f": "Float", "i": "Int", "u": "UInt"}
 
 
 def _item(file: str, path: str, shape, dtype) -> str:
-    kind, precision = _TYPES.get(np.dtype(dtype).kind, ("Int", 1))
-    precision = np.dtype(dtype).itemsize if kind != "Float" else 4
+    dtype = np.dtype(dtype)
+    kind = _KINDS.get(dtype.kind, "Int")
+    precision = dtype.itemsize
     dims = " ".join(str(s) for s in shape)
     return (
         f'<DataItem Dimensions="{dims}" NumberType="{kind}" Precision="{precision}" '

@@ -64,6 +64,14 @@ class StepContext:
     _evaluate: Any = field(default=None, repr=False)
 
     _residual: Any = field(default=None, repr=False)
+    _pairs: Any = field(default=None, repr=False)
+
+    @property
+    def pairs(self) -> dict:
+        """The model's ``pair_results()`` at this step (computed once)."""
+        if self._pairs is None:
+            self._pairs = self.problem.model.pair_results()
+        return self._pairs
 
     @property
     def cells(self):
@@ -194,7 +202,7 @@ class KeyStates:
     def record(self, ctx: StepContext) -> None:
         if not ctx.cycle:
             self.tensioned = ctx.cells
-            self.tensioned_pairs = ctx.problem.model.pair_results()
+            self.tensioned_pairs = ctx.pairs
         elif abs(ctx.step.load) > abs(self._peak_load):
             self._peak_load = ctx.step.load
             self.peak = ctx.cells
@@ -224,7 +232,7 @@ class SlipTable(_CsvFile):
         )
 
     def record(self, ctx: StepContext) -> None:
-        slipping = ctx.problem.pair_results()["slipping"]
+        slipping = ctx.pairs["slipping"]
         fractions = [slipping[m].mean() if m.any() else 0.0 for m in self.masks]
         load = ctx.problem.setup.get(self.parameter)
         self.writer.writerow([ctx.step.number, load, *fractions])
@@ -248,7 +256,7 @@ class SmallSlidingMonitor:
         from .post import sliding_check
 
         m = self.model
-        check = sliding_check(m.geometry, m.positions(), m.pair_results()["gap"])
+        check = sliding_check(m.geometry, m.positions(), ctx.pairs["gap"])
         if len(check.exceeded()):
             self.warned = True
             text = f"step {ctx.step.number}: {check.message()}"
@@ -292,8 +300,9 @@ class _CycleHistory:
 class PairHistory(_CycleHistory):
     """``contact_pairs.h5`` (``strand.history``) and ``contact_points.xdmf`` (its ParaView series):
     per contact pair, at the tensioned state and every cycle step, the contact point, normal force
-    (N), friction force vector (N, on the inner wire a; the outer one b takes its opposite), gap (m), state (0 open, 1 stick, 2 slip),
-    and since the start of the cycle: the relative displacement of the surface points ``slip``
+    (N), friction force vector (N, on the inner wire a; the outer one b takes its opposite), gap
+    (m), state (0 open, 1 stick, 2 slip), and since the start of the cycle: the relative
+    displacement of the surface points ``slip``
     and its Coulomb part ``sliding`` (vectors, m) and the energy friction dissipated ``work``
     (J). Static: the pair's wires, interface, kind (1: line), initial z (m) and angle φ about the
     axis (deg, from the x axis), crossing angle (deg), tributary length and radii (m)."""
@@ -326,7 +335,7 @@ class PairHistory(_CycleHistory):
         self._origin = None
 
     def _arrays(self, ctx: StepContext) -> dict:
-        r = self.model.pair_results()
+        r = ctx.pairs
         x = self.model.positions()
         n = r["normal"]
         point = x[self.a] + (self.r_a + 0.5 * r["gap"])[:, None] * n

@@ -242,6 +242,7 @@ def test_run_writes_pair_and_wire_histories_and_the_fatigue_report(tmp_path):
         assert len(points) == len(pairs.static["z"]) and reader.num_steps == len(pairs)
         _, data, _ = reader.read_data(reader.num_steps - 1)
         np.testing.assert_allclose(data["force"], pairs["force"][-1])
+        np.testing.assert_array_equal(data["z"], pairs.static["z"])  # float64 static arrays
     with open(out / "crossings.csv") as f:
         assert len(list(csv.DictReader(f))) == len(pairs.static["z"])
     with open(out / "wires.csv") as f:

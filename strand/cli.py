@@ -62,19 +62,26 @@ def _mesh(args) -> int:
     from .case import load_case
     from .folder import writable_folder
     from .geometry import build_geometry
+    from .parallel import is_root, on_root
 
     case = load_case(args.case, args.set)
-    out = writable_folder(args.out)
+    out = on_root(lambda: writable_folder(args.out))
     t0 = time.perf_counter()
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     t_geo = time.perf_counter() - t0
     from .mesh import cable_mesh, write_centrelines
+    from .model import strand_stencils
 
     t0 = time.perf_counter()
-    cable_mesh(geometry)
+    stencils = strand_stencils(geometry, case.contact)
+    mesh = cable_mesh(geometry, stencils=stencils).mesh
     t_mesh = time.perf_counter() - t0
+    if not is_root():  # the table, the file and the picture once
+        return 0
     print(mesh_table(geometry))
-    print(f"\nbuilt in {t_geo:.3f} s (geometry and pairs) + {t_mesh:.3f} s (dolfinx mesh)")
+    ranks = mesh.comm.size
+    where = f" on {ranks} MPI ranks (axial slabs)" if ranks > 1 else ""
+    print(f"\nbuilt in {t_geo:.3f} s (geometry and pairs) + {t_mesh:.3f} s (dolfinx mesh{where})")
     write_centrelines(geometry, out / "centrelines.vtu")
     if not args.no_picture:
         from .plots import strand_picture
@@ -171,7 +178,10 @@ def main(argv: list[str] | None = None) -> int:
             return _compare(args)
         return _run(args)
     except (CableError, CaseError, FolderError) as e:
-        print(f"strand: error: {e}", file=sys.stderr)
+        from .parallel import is_root
+
+        if is_root():  # one line, not one per rank
+            print(f"strand: error: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:  # a second Ctrl-C, or one outside the load steps
         print("strand: interrupted; the steps written so far are kept", file=sys.stderr)

@@ -18,15 +18,23 @@ import h5py
 import numpy as np
 import numpy.typing as npt
 
+from .parallel import is_root
+
 __all__ = ["HistoryWriter", "History", "read_history", "write_points_xdmf"]
 
 
 class HistoryWriter:
     """Creates ``path`` with the ``static`` arrays; ``write`` appends one step's arrays (stored
-    as float32 unless integer or boolean: histories are for reading, not restarting)."""
+    as float32 unless integer or boolean: histories are for reading, not restarting). Only rank
+    0 of a distributed run touches the file (``file`` is None elsewhere); the arrays it is given
+    are whole on every rank."""
 
     def __init__(self, path: str | Path, static: dict[str, npt.ArrayLike], **attributes):
         self.path = Path(path)
+        self.steps: list[tuple[int, float, dict[str, tuple]]] = []
+        self.file = None
+        if not is_root():
+            return
         self.file = h5py.File(self.path, "w")
         for key, value in attributes.items():
             self.file.attrs[key] = value
@@ -34,7 +42,6 @@ class HistoryWriter:
         for name, value in static.items():
             group.create_dataset(name, data=np.asarray(value))
         self.file.create_group("steps")
-        self.steps: list[tuple[int, float, dict[str, tuple]]] = []
         self.file.flush()
 
     def write(
@@ -42,6 +49,8 @@ class HistoryWriter:
     ) -> None:
         """Append step ``number`` at programme ``time`` with its ``arrays`` and scalar
         ``values`` (e.g. the load)."""
+        if self.file is None:
+            return
         key = f"{len(self.steps):06d}"
         group = self.file["steps"].create_group(key)
         group.attrs["step"], group.attrs["time"] = number, time
@@ -60,7 +69,8 @@ class HistoryWriter:
         self.file.flush()
 
     def close(self) -> None:
-        self.file.close()
+        if self.file is not None:
+            self.file.close()
 
 
 @dataclass

@@ -104,9 +104,17 @@ class CableMesh:
         return np.column_stack([i2b[p.a], i2b[p.b]]).astype(np.int32)
 
 
-def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD) -> CableMesh:
-    """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays)."""
-    mesh = polyline_mesh(comm, geometry.points, geometry.cells)
+def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD, stencils=()) -> CableMesh:
+    """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays). On several
+    ranks it is cut in axial slabs, ghosted so that each row of ``stencils`` (input node indices,
+    anchor first: contact pairs, end sections) is whole on the rank owning its anchor
+    (``strand.partition``)."""
+    partitioner = None
+    if comm.size > 1:
+        from .partition import slab_partitioner
+
+        partitioner = slab_partitioner(geometry.points[:, 2], geometry.cells, stencils)
+    mesh = polyline_mesh(comm, geometry.points, geometry.cells, partitioner)
     n_local = mesh.topology.index_map(1).size_local
     cells = np.arange(n_local, dtype=np.int32)
     original = np.asarray(mesh.topology.original_cell_index)[:n_local]

@@ -20,13 +20,14 @@ from mpi4py import MPI  # isort: skip
 from forms import CircularSection, ReissnerBeam  # isort: skip
 
 from .contact.element import ContactSettings  # isort: skip
-from .contact.strand_pairs import contact_groups  # isort: skip
-from .contact.sliding import sliding_groups  # isort: skip
+from .contact.strand_pairs import contact_groups, pair_stencils  # isort: skip
+from .contact.sliding import sliding_groups, sliding_windows  # isort: skip
 from .geometry import StrandGeometry  # isort: skip
 from .mesh import CableMesh, beam_space, cable_mesh, input_to_block  # isort: skip
 from .output import cell_function  # isort: skip
+from .partition import DistributionError, owned_rows  # isort: skip
 
-__all__ = ["StrandModel", "layer_section"]
+__all__ = ["StrandModel", "layer_section", "strand_stencils"]
 
 Array = npt.NDArray[np.float64]
 
@@ -40,6 +41,21 @@ def layer_section(cmesh: CableMesh) -> CircularSection:
         for name, get in (("d", lambda w: w.diameter), ("E", lambda w: w.E), ("nu", lambda w: w.nu))
     }
     return CircularSection(values["d"], values["E"], values["nu"])
+
+
+def strand_stencils(
+    geometry: StrandGeometry, settings: ContactSettings
+) -> list[npt.NDArray[np.int64]]:
+    """Input nodes that a strand's terms couple, anchor first, which a distributed mesh keeps
+    whole on the rank owning the anchor (``cable_mesh``): the contact pairs' (small or large
+    sliding), and each end section (the core's end, then every other wire end), which the
+    set-ups tie to a pilot."""
+    if settings.model == "large":
+        out = [nodes for _, nodes, _, _ in sliding_windows(geometry, settings.reach)]
+    else:
+        out = [pair_stencils(geometry)]
+    offsets = geometry.wire_offsets
+    return out + [offsets[:-1][None, :], (offsets[1:] - 1)[None, :]]
 
 
 class StrandModel:
@@ -58,26 +74,63 @@ class StrandModel:
     ):
         self.geometry = geometry
         self.contact_settings = cs = contact or ContactSettings()
-        self.cmesh = cable_mesh(geometry, comm)
+        self.comm = comm
+        self.cmesh = cable_mesh(geometry, comm, strand_stencils(geometry, cs))
         self.V = beam_space(self.cmesh.mesh)
         self.w = fem.Function(self.V, name="w")
         self.section = layer_section(self.cmesh)
         self.beam = ReissnerBeam(self.w, self.section)
         self.i2b = input_to_block(self.V)
+        #: dof blocks this rank owns (0 … n_owned − 1; ghosts follow), and their input points
+        self.n_owned = self.V.dofmap.index_map.size_local
+        self.owned_points = np.flatnonzero((self.i2b >= 0) & (self.i2b < self.n_owned))
+        owned = self.n_owned if comm.size > 1 else None
         if cs.model == "large":
-            self.contact = sliding_groups(geometry, self.i2b, cs)
+            self.contact = sliding_groups(geometry, self.i2b, cs, owned)
         else:
-            self.contact = contact_groups(geometry, self.i2b, cs)
+            self.contact = contact_groups(geometry, self.i2b, cs, owned)
+        n_pairs = comm.allreduce(sum(len(g.index) for g in self.contact), op=MPI.SUM)
+        if n_pairs != len(geometry.pairs):
+            raise DistributionError(
+                f"{n_pairs} contact pairs evaluated over the ranks instead of "
+                f"{len(geometry.pairs)}: each must be evaluated on exactly one"
+            )
+
+    def stencils(self) -> list[npt.NDArray[np.int64]]:
+        """What this model's terms couple (``strand_stencils``)."""
+        return strand_stencils(self.geometry, self.contact_settings)
+
+    def owned_rows(self, points: npt.ArrayLike, what: str = "terms") -> npt.NDArray[np.intp]:
+        """Rows of ``points`` (P, k input node indices, anchor first) that this rank evaluates:
+        those whose anchor it owns (``partition.owned_rows``); all rows on one rank."""
+        points = np.asarray(points)
+        return owned_rows(self.i2b[points], self.n_owned, what)
+
+    def gather_nodes(self, values: Array) -> Array:
+        """Nodal values given per local dof block (at least the owned ones, (n, k)) as an
+        (N, k) array in the geometry's point order, on every rank."""
+        values = np.asarray(values)
+        if self.comm.size == 1:
+            return values[self.i2b]
+        out = np.zeros((len(self.i2b), *values.shape[1:]), dtype=values.dtype)
+        out[self.owned_points] = values[self.i2b[self.owned_points]]
+        self.comm.Allreduce(MPI.IN_PLACE, out, op=MPI.SUM)
+        return out
+
+    def node_values(self) -> Array:
+        """(N, 6) nodal unknowns (u in m, θ in rad) in the geometry's point order, every rank."""
+        return self.gather_nodes(self.nodal)
 
     @property
     def nodal(self) -> Array:
-        """(n_blocks, 6) nodal unknowns (u in m, θ in rad)."""
+        """(n_blocks, 6) nodal unknowns (u in m, θ in rad) of this rank's dof blocks (ghosts
+        included); ``node_values`` gives them all in the geometry's order."""
         return self.w.x.array.reshape(-1, 6)
 
     def positions(self) -> Array:
-        """Current positions (m) of the geometry's points, in the geometry's order (N, 3)."""
-        g = self.geometry
-        return g.points + self.nodal[self.i2b[np.arange(len(g.points))], :3]
+        """Current positions (m) of the geometry's points, in the geometry's order (N, 3), on
+        every rank."""
+        return self.geometry.points + self.node_values()[:, :3]
 
     def wire_ends(self, end: int) -> npt.NDArray[np.int64]:
         """Input indices of every wire's first (``end`` = 0, z = 0) or last (1, z = L) point; the
@@ -107,8 +160,7 @@ class StrandModel:
         ``normal``, and the friction history since t = 0 (``FrictionHistory``): ``slip`` and
         ``sliding`` (m), with the dissipated energy ``work`` (J)."""
         n = len(self.geometry.pairs)
-        out = {k: np.zeros(n) for k in ("gap", "force", "traction", "work")}
-        out["slipping"] = np.zeros(n, dtype=bool)
+        out = {k: np.zeros(n) for k in ("gap", "force", "traction", "work", "slipping")}
         for k in ("friction", "normal", "slip", "sliding"):
             out[k] = np.zeros((n, 3))
         for g in self.contact:
@@ -122,4 +174,8 @@ class StrandModel:
             out["slip"][g.index] = h.slip
             out["sliding"][g.index] = h.sliding
             out["work"][g.index] = h.work
+        if self.comm.size > 1:  # each pair lives on one rank: the sums are exact
+            for value in out.values():
+                self.comm.Allreduce(MPI.IN_PLACE, value, op=MPI.SUM)
+        out["slipping"] = out["slipping"] > 0.5
         return out

@@ -260,20 +260,20 @@ def incomplete_note(result) -> str:
 def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
     at the largest load (true scale) and coloured by wire axial force, seen across the load."""
-    from .mesh import node_to_block
+    import pyvista
 
-    mesh = problem.cmesh.mesh
+    g = problem.geometry
     peak, L = result.peak, case.mesh.length
-    u = result.peak_w.reshape(-1, 6)[:, :3]
-    disp = u[node_to_block(problem.V)]  # in the order of the mesh's geometry nodes
-    n_local = mesh.topology.index_map(1).size_local
-    order = np.asarray(mesh.topology.original_cell_index)[:n_local]
+    x = g.points + result.peak_w[:, :3]  # the geometry's point order, whole on every rank
     D = case.cable.outer_diameter
     half = min(L / 2, max(0.15 * L, 6 * D))
     outer = len(case.cable.layers) - 1
-    shown = (peak.layer[order] == outer) & (np.abs(peak.z[order] - L / 2) <= half)
-    grid = tubes(mesh, disp, peak.axial[order], "N (N)", cells=np.flatnonzero(shown),
-                 radius=case.cable.layers[-1].wire.diameter / 2)  # fmt: skip
+    shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
+    lines = np.column_stack([np.full(len(shown), 2), g.cells[shown]]).ravel()
+    grid = pyvista.PolyData(x, lines=lines)
+    grid.cell_data["N (N)"] = peak.axial[shown]
+    radius = case.cable.layers[-1].wire.diameter / 2
+    grid = grid.cell_data_to_point_data().tube(radius=radius, n_sides=16)
     plotter = offscreen_plotter(window_size=(1800, 650))
     plotter.add_mesh(
         grid, scalars="N (N)", cmap="coolwarm",

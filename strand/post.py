@@ -18,6 +18,7 @@ import strand  # noqa: F401
 
 import ufl  # isort: skip
 from dolfinx import fem  # isort: skip
+from mpi4py import MPI  # isort: skip
 
 from .cable import Cable  # isort: skip
 from .geometry import LINE  # isort: skip
@@ -41,8 +42,8 @@ Array = npt.NDArray[np.float64]
 @dataclass
 class CellResults:
     """Per element, in the geometry's cell order: wire, layer, z (m, initial midpoint), angle φ
-    (deg, current, about the core), axial force N (N), and the spatial section force n (N) and
-    moment m (N m) vectors."""
+    (deg, current, about the core; 0 for the core itself), axial force N (N), and the spatial
+    section force n (N) and moment m (N m) vectors."""
 
     wire: npt.NDArray[np.int32]
     layer: npt.NDArray[np.int32]
@@ -69,11 +70,16 @@ class CellEvaluator:
         n_local = mesh.topology.index_map(1).size_local
         self.order = np.asarray(mesh.topology.original_cell_index)[:n_local]
         self.dofs = self.D.dofmap.list[:n_local, 0]
+        self.n_cells = len(model.geometry.cells)
+        self.comm = mesh.comm
 
     def __call__(self) -> Array:
+        """(E, 7) values (N, n, m) of every element in the geometry's order, on every rank."""
         self.f.interpolate(self.expr)
-        out = np.zeros((self.order.max() + 1, 7))
+        out = np.zeros((self.n_cells, 7))
         out[self.order] = self.f.x.array.reshape(-1, 7)[self.dofs]
+        if self.comm.size > 1:  # each cell is owned by one rank: the sum is exact
+            self.comm.Allreduce(MPI.IN_PLACE, out, op=MPI.SUM)
         return out
 
 
@@ -100,7 +106,8 @@ def cell_results(
     r = mid - centre
     d = np.asarray(direction, float) / np.linalg.norm(direction)
     s = np.cross([0.0, 0.0, 1.0], d)
-    phi = np.degrees(np.arctan2(r @ d, r @ s))
+    # the core is the axis: its φ would be the angle of a round-off vector (rank-dependent)
+    phi = np.where(g.cell_layer == 0, 0.0, np.degrees(np.arctan2(r @ d, r @ s)))
     tangent = x[g.cells[:, 1]] - x[g.cells[:, 0]]
     tangent /= np.linalg.norm(tangent, axis=1)[:, None]
     return CellResults(

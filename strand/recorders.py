@@ -16,6 +16,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from .parallel import root_open
 from .setups.base import columns, values
 
 __all__ = [
@@ -82,9 +83,11 @@ class StepContext:
 
     @property
     def residual(self):
-        """Unconstrained residual (n_blocks, 6) at this step: the reactions at supports."""
+        """Unconstrained residual (N, 6) at this step, in the geometry's point order: the
+        reactions at supports."""
         if self._residual is None:
-            self._residual = self.problem.solver.unconstrained_residual()
+            residual = self.problem.solver.unconstrained_residual()
+            self._residual = self.problem.model.gather_nodes(residual)
         return self._residual
 
 
@@ -96,7 +99,7 @@ class Recorder(Protocol):
 
 class _CsvFile:
     def __init__(self, path: Path, header: list[str]):
-        self.file = open(path, "w", newline="")  # noqa: SIM115 (closed in close)
+        self.file = root_open(path, "w", newline="")  # noqa: SIM115 (closed in close)
         self.writer = csv.writer(self.file)
         self.writer.writerow(header)
         self.file.flush()
@@ -135,7 +138,7 @@ class AxialForceTable:
 
     def __init__(self, folder: Path, parameter: str, unit: str):
         self.parameter = parameter
-        self.file = open(Path(folder) / "axial_forces.csv", "w", newline="")  # noqa: SIM115
+        self.file = root_open(Path(folder) / "axial_forces.csv", "w", newline="")  # noqa: SIM115
         self.file.write(f"step,{parameter}_{unit},element,wire,layer,z_m,phi_deg,N_N\n")
         self.file.flush()
 
@@ -190,7 +193,7 @@ class FieldSeries:
 class KeyStates:
     """Keeps the cell results and contact pair results of the tensioned state (last step before
     the cycle), and the cell results of the largest abs(cycle load) reached, with the nodal unknowns
-    there (for summary and figures)."""
+    there ((N, 6) in the geometry's point order; for summary and figures)."""
 
     def __init__(self):
         self.tensioned = None
@@ -206,7 +209,7 @@ class KeyStates:
         elif abs(ctx.step.load) > abs(self._peak_load):
             self._peak_load = ctx.step.load
             self.peak = ctx.cells
-            self.peak_w = ctx.problem.w.x.array.copy()
+            self.peak_w = ctx.problem.model.node_values()
 
     def close(self) -> None:
         pass
@@ -352,7 +355,8 @@ class PairHistory(_CycleHistory):
             self._origin = {k: arrays[k].copy() for k in ("slip", "sliding", "work")}
         arrays = dict(arrays, **{k: arrays[k] - v for k, v in self._origin.items()})
         super()._write(step, arrays, load)
-        write_points_xdmf(self.folder / "contact_points.xdmf", self.writer)
+        if self.writer.file is not None:  # the rank that writes (rank 0)
+            write_points_xdmf(self.folder / "contact_points.xdmf", self.writer)
 
     def close(self) -> None:
         self.writer.close()

@@ -29,6 +29,7 @@ import strand  # noqa: F401
 
 from .case import Case  # isort: skip
 from .folder import RUN_MARKER, prepare_results_folder  # isort: skip
+from .parallel import is_root, on_root, root_stream  # isort: skip
 from .geometry import LINE, build_geometry  # isort: skip
 from .post import (  # isort: skip
     CellEvaluator,
@@ -177,9 +178,15 @@ def run_case(
     """Run ``case``; outputs go to ``folder`` (default: the case's output folder), which must be
     new or empty, or hold an earlier run to be replaced with ``overwrite`` (``FolderError``
     otherwise, raised before any computing)."""
-    stream = stream or sys.stdout
-    folder = prepare_results_folder(folder or case.output.folder, overwrite)
-    (folder / RUN_MARKER).write_text(_settings_text(case))
+    stream = root_stream(stream or sys.stdout)  # printed once in a distributed run
+    folder = folder or case.output.folder
+
+    def prepare() -> Path:
+        path = prepare_results_folder(folder, overwrite)
+        (path / RUN_MARKER).write_text(_settings_text(case))
+        return path
+
+    folder = on_root(prepare)  # rank 0 checks and writes; every rank gets its verdict
     result = RunResult(folder)
     t_start = time.perf_counter()
 
@@ -188,11 +195,12 @@ def run_case(
     setup, programme = setup_and_programme(case)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
     evaluator = CellEvaluator(problem.model)
+    size = problem.model.comm.size
     print(
         f"{case.cable.name}: L = {case.mesh.length:g} m, {len(geometry.wire_layer)} wires, "
-        f"{len(geometry.cells)} elements, {problem.w.x.array.size} unknowns, "
+        f"{len(geometry.cells)} elements, {6 * len(geometry.points)} unknowns, "
         f"{len(geometry.pairs)} contact pairs, normal = {case.contact.normal}, friction "
-        f"{'on' if case.contact.friction else 'off'}",
+        f"{'on' if case.contact.friction else 'off'}" + (f"; {size} MPI ranks" if size > 1 else ""),
         file=stream,
         flush=True,
     )
@@ -281,22 +289,23 @@ def run_case(
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=output_seconds)
     summary = summarize(case, result, problem)
-    (folder / "summary.txt").write_text(summary)
     print(summary, file=stream, flush=True)
-    report = None
-    if case.fatigue.outputs and len(result.cycle_steps):
-        recording = sum(
-            r.seconds for r in recorders if isinstance(r, PairHistory | WireSectionHistory)
-        )
-        report = run_fatigue_report(case, result, recording, stream)
-    if case.output.plots:
-        from .plots import fatigue_figures, results_figures
+    if is_root():  # the summary, report and figures read what every rank has (or rank 0 wrote)
+        (folder / "summary.txt").write_text(summary)
+        report = None
+        if case.fatigue.outputs and len(result.cycle_steps):
+            recording = sum(
+                r.seconds for r in recorders if isinstance(r, PairHistory | WireSectionHistory)
+            )
+            report = run_fatigue_report(case, result, recording, stream)
+        if case.output.plots:
+            from .plots import fatigue_figures, results_figures
 
-        paths = results_figures(case, result, problem)
-        if report is not None:
-            paths += fatigue_figures(folder, report)
-        for path in paths:
-            print(f"figure: {path}", file=stream)
+            paths = results_figures(case, result, problem)
+            if report is not None:
+                paths += fatigue_figures(folder, report)
+            for path in paths:
+                print(f"figure: {path}", file=stream)
     problem.solver.destroy()
     return result
 

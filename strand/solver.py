@@ -34,6 +34,7 @@ import dolfinx  # isort: skip
 import dolfinx.fem.petsc as fem_petsc  # isort: skip
 import ufl  # isort: skip
 from dolfinx import fem  # isort: skip
+from mpi4py import MPI  # isort: skip
 from petsc4py import PETSc  # isort: skip
 
 __all__ = [
@@ -303,9 +304,8 @@ class NewtonSolver:
         t0 = time.perf_counter()
         x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(x, self.w)
-        if not np.all(np.isfinite(self.w.x.array)) or (
-            self.interrupt is not None and self.interrupt.requested
-        ):  # a diverged iterate, or Ctrl-C: SNES stops (DIVERGED_FUNCTION_NANORINF)
+        if not self._all_finite() or self.stop_requested():
+            # a diverged iterate, or Ctrl-C: SNES stops (DIVERGED_FUNCTION_NANORINF)
             b.set(np.nan)
             return
         terms = self._masked_terms()
@@ -378,12 +378,25 @@ class NewtonSolver:
         finite unknowns, and on the step-size test (``stol``) a residual within ``floor_factor``
         of the tolerance (the absolute and relative tests imply one by themselves)."""
         r = self._residuals
-        if not r or not np.all(np.isfinite(r)) or not np.all(np.isfinite(self.w.x.array)):
+        if not r or not np.all(np.isfinite(r)) or not self._all_finite():
             return False
         if reason != PETSc.SNES.ConvergedReason.CONVERGED_SNORM_RELATIVE:
             return True
         o = self.options
         return r[-1] <= o.floor_factor * max(o.atol, o.rtol * r[0])
+
+    def _all_finite(self) -> bool:
+        """Whether the unknowns are finite on every rank (the same answer on all: collective)."""
+        ok = bool(np.all(np.isfinite(self.w.x.array)))
+        comm = self.V.mesh.comm
+        return comm.allreduce(ok, op=MPI.LAND) if comm.size > 1 else ok
+
+    def stop_requested(self) -> bool:
+        """Whether the user asked to stop (``interrupt``) on any rank; collective, so that every
+        rank takes the same branch."""
+        asked = self.interrupt is not None and self.interrupt.requested
+        comm = self.V.mesh.comm
+        return comm.allreduce(asked, op=MPI.LOR) if comm.size > 1 else asked
 
     def destroy(self) -> None:
         """Free the PETSc objects and remove this solver's options from PETSc's database."""
@@ -544,9 +557,8 @@ class LoadStepper:
         cuts = 0
         w = self.solver.w.x.array
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
-        interrupt = self.solver.interrupt
         while sign * (end - current) > 1e-12 * max(1.0, abs(end)):
-            if interrupt is not None and interrupt.requested:
+            if self.solver.stop_requested():
                 raise RunInterrupted(
                     f"{stage}: interrupted by the user at {current:.6g} (target {end:.6g}). "
                     "The state at the last converged load is kept and was written."
@@ -574,7 +586,7 @@ class LoadStepper:
             else:
                 self.solver.rollback()
                 set_load(current)
-                if interrupt is not None and interrupt.requested:
+                if self.solver.stop_requested():
                     continue  # not a failure: stop at the top of the loop
                 step /= 2
                 cuts += 1

@@ -43,7 +43,13 @@ from .kinematics import _cross, _dot, _rotate, _rotation_coefficients, _tangent_
 from .laws import FrictionLaw, NormalLaw
 from .strand_pairs import pair_laws
 
-__all__ = ["SlidingGroup", "sliding_groups", "hermite_point", "SlidingWindowError"]
+__all__ = [
+    "SlidingGroup",
+    "sliding_groups",
+    "sliding_windows",
+    "hermite_point",
+    "SlidingWindowError",
+]
 
 Array = npt.NDArray[np.float64]
 _EPS = 1e-30
@@ -418,46 +424,67 @@ def _windows(geometry: StrandGeometry, nodes: npt.NDArray[np.intp], reach: float
     return first, last, np.column_stack([first == lo, last == hi])
 
 
-def sliding_groups(
-    geometry: StrandGeometry,
-    input_to_block: npt.NDArray[np.int32],
-    settings: ContactSettings,
-) -> list[SlidingGroup]:
-    """Large-sliding versions of the geometry's pairs, with the laws of ``settings``. Each pair's
-    window holds the segments of its wires within ``settings.reach`` (m) of its initial nodes;
-    pairs with windows of equal sizes share a group."""
+def sliding_windows(geometry: StrandGeometry, reach: float):
+    """The node windows of the large-sliding pairs: per group of equal window sizes, the pairs
+    ``sel``, the window of each, (P, na + nb) input nodes (wire a's first, from its first node),
+    and ``na``. Each pair's window holds the segments of its wires within ``reach`` (m) of its
+    initial nodes; a line pair's node b (a point against the core) is its own window."""
     pairs = geometry.pairs
-    tangents = geometry.tangents()
-    a_first, a_last, a_ends = _windows(geometry, pairs.a, settings.reach)
-    b_first, b_last, b_ends = _windows(geometry, pairs.b, settings.reach)
-    # a line pair's node b is a point against the core: its window is the node itself
+    a_first, a_last, a_ends = _windows(geometry, pairs.a, reach)
+    b_first, b_last, b_ends = _windows(geometry, pairs.b, reach)
     is_line = pairs.kind == LINE
     b_first, b_last = np.where(is_line, pairs.b, b_first), np.where(is_line, pairs.b, b_last)
     b_ends[is_line] = True
     sizes = np.column_stack([a_last - a_first + 1, b_last - b_first + 1])
-    groups = []
+    out = []
     for kind in (0, LINE):
-        line = kind == LINE
         of_kind = pairs.kind == kind
         for na, nb in np.unique(sizes[of_kind], axis=0):
             sel = np.flatnonzero(of_kind & (sizes[:, 0] == na) & (sizes[:, 1] == nb))
             nodes = np.concatenate(
                 [a_first[sel, None] + np.arange(na), b_first[sel, None] + np.arange(nb)], axis=1
             )
-            # the closest points start at the pair's nodes: ξ = 0 on the segment they begin
-            # (1 on the last segment when the node ends the window)
-            a_pos, b_pos = pairs.a[sel] - a_first[sel], pairs.b[sel] - b_first[sel]
-            start_a = np.minimum(a_pos, na - 2)
-            start_b = np.zeros(len(sel), dtype=np.intp) if line else np.minimum(b_pos, nb - 2)
-            start_parameters = np.column_stack([a_pos - start_a, b_pos - start_b]).astype(float)
-            pair_tangents = np.stack([tangents[pairs.a[sel]], tangents[pairs.b[sel]]], axis=1)
-            normal_law, friction_law = pair_laws(geometry, sel, settings, pair_tangents)
-            groups.append(
-                SlidingGroup(input_to_block[nodes], geometry.points[nodes], int(na), line,
-                             np.column_stack([start_a, start_b]), normal_law, friction_law,
-                             index=sel,
-                             wire_end=np.column_stack([a_ends[sel], b_ends[sel]]),
-                             radius_a=pairs.radius_a[sel], radius_b=pairs.radius_b[sel],
-                             start_parameters=start_parameters, tangents=tangents[nodes])
-            )  # fmt: skip
+            ends = np.column_stack([a_ends[sel], b_ends[sel]])
+            out.append((sel, nodes, int(na), ends))
+    return out
+
+
+def sliding_groups(
+    geometry: StrandGeometry,
+    input_to_block: npt.NDArray[np.int32],
+    settings: ContactSettings,
+    n_owned: int | None = None,
+) -> list[SlidingGroup]:
+    """Large-sliding versions of the geometry's pairs (windows: ``sliding_windows``), with the
+    laws of ``settings``; pairs with windows of equal sizes share a group. With ``n_owned`` (a
+    distributed mesh: the number of dof blocks this rank owns), only the pairs whose window
+    starts on an owned node (``partition.owned_rows``)."""
+    from ..partition import owned_rows
+
+    pairs = geometry.pairs
+    tangents = geometry.tangents()
+    groups = []
+    for sel, nodes, na, ends in sliding_windows(geometry, settings.reach):
+        if n_owned is not None:
+            rows = owned_rows(input_to_block[nodes], n_owned, "contact pairs")
+            sel, nodes, ends = sel[rows], nodes[rows], ends[rows]
+        if not len(sel):
+            continue
+        line = bool(pairs.kind[sel[0]] == LINE)
+        # the closest points start at the pair's nodes: ξ = 0 on the segment they begin
+        # (1 on the last segment when the node ends the window)
+        a_pos, b_pos = pairs.a[sel] - nodes[:, 0], pairs.b[sel] - nodes[:, na]
+        nb = nodes.shape[1] - na
+        start_a = np.minimum(a_pos, na - 2)
+        start_b = np.zeros(len(sel), dtype=np.intp) if line else np.minimum(b_pos, nb - 2)
+        start_parameters = np.column_stack([a_pos - start_a, b_pos - start_b]).astype(float)
+        pair_tangents = np.stack([tangents[pairs.a[sel]], tangents[pairs.b[sel]]], axis=1)
+        normal_law, friction_law = pair_laws(geometry, sel, settings, pair_tangents)
+        groups.append(
+            SlidingGroup(input_to_block[nodes], geometry.points[nodes], na, line,
+                         np.column_stack([start_a, start_b]), normal_law, friction_law,
+                         index=sel, wire_end=ends,
+                         radius_a=pairs.radius_a[sel], radius_b=pairs.radius_b[sel],
+                         start_parameters=start_parameters, tangents=tangents[nodes])
+        )  # fmt: skip
     return groups

@@ -16,7 +16,9 @@ from .element import ContactGroup, ContactSettings
 from .laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
 from .pairs import NodePairs, contact_terms, crossing_angle
 
-__all__ = ["strand_pairs", "contact_groups", "pair_laws", "wire_neighbours"]
+from ..partition import DistributionError, owned_rows  # isort: skip
+
+__all__ = ["strand_pairs", "pair_stencils", "contact_groups", "pair_laws", "wire_neighbours"]
 
 
 def wire_neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
@@ -26,18 +28,26 @@ def wire_neighbours(geometry: StrandGeometry, nodes: npt.NDArray[np.int64]):
     return np.maximum(nodes - 1, lo), np.minimum(nodes + 1, hi)
 
 
+def pair_stencils(geometry: StrandGeometry, sel=None) -> npt.NDArray[np.int64]:
+    """(P, 6) input nodes of the geometry's pairs ``sel`` (default: all) in ``ROLES`` order:
+    a, b and their neighbours along their wires (a first: the anchor of a distributed pair)."""
+    pairs = geometry.pairs
+    sel = np.arange(len(pairs)) if sel is None else np.asarray(sel)
+    a, b = pairs.a[sel], pairs.b[sel]
+    return np.column_stack([a, b, *wire_neighbours(geometry, a), *wire_neighbours(geometry, b)])
+
+
 def strand_pairs(geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32], sel) -> NodePairs:
     """The geometry's pairs ``sel`` (all of one kind) as ``NodePairs`` on the local dof blocks
     ``input_to_block`` (``mesh.input_to_block``), with zero initial gaps."""
     pairs = geometry.pairs
     sel = np.asarray(sel)
-    a, b = pairs.a[sel], pairs.b[sel]
-    points = np.column_stack([a, b, *wire_neighbours(geometry, a), *wire_neighbours(geometry, b)])
+    points = pair_stencils(geometry, sel)
     blocks = input_to_block[points]
     if np.any(blocks < 0):
-        raise NotImplementedError(
-            "contact pairs whose nodes are not all on this process: strand's contact runs "
-            "serially for now (pair ownership with a slab partitioner is the way to MPI)"
+        raise DistributionError(
+            "contact pairs whose nodes are not all on this process: distribute the mesh with "
+            "strand.partition.slab_partitioner and keep the pairs this rank owns (owned_rows)"
         )
     kinds = pairs.kind[sel]
     if len(np.unique(kinds)) > 1:
@@ -56,12 +66,20 @@ def strand_pairs(geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32]
 
 
 def contact_groups(
-    geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32], settings: ContactSettings
+    geometry: StrandGeometry,
+    input_to_block: npt.NDArray[np.int32],
+    settings: ContactSettings,
+    n_owned: int | None = None,
 ) -> list[ContactGroup]:
-    """The contact pairs of a strand as ``ContactGroup`` objects (one per pair kind present)."""
+    """The contact pairs of a strand as ``ContactGroup`` objects (one per pair kind present).
+    With ``n_owned`` (a distributed mesh: the number of dof blocks this rank owns), only the
+    pairs whose node a this rank owns (``partition.owned_rows``)."""
     groups = []
     for kind in (POINT, LINE):
         sel = np.flatnonzero(geometry.pairs.kind == kind)
+        if n_owned is not None:
+            blocks = input_to_block[pair_stencils(geometry, sel)]
+            sel = sel[owned_rows(blocks, n_owned, "contact pairs")]
         if len(sel):
             pairs = strand_pairs(geometry, input_to_block, sel)
             laws = pair_laws(geometry, sel, settings, pairs.tangents)

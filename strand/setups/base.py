@@ -15,7 +15,17 @@ from dataclasses import field, fields
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["TestSetup", "PenaltyLinks", "pilot_links", "quantity", "columns", "values"]
+from ..solver import NodalLoad
+
+__all__ = [
+    "TestSetup",
+    "PenaltyLinks",
+    "pilot_links",
+    "owned_load",
+    "quantity",
+    "columns",
+    "values",
+]
 
 
 def quantity(unit: str, doc: str = ""):
@@ -130,11 +140,21 @@ class PenaltyLinks:
 
 
 def pilot_links(
-    input_to_block: npt.NDArray[np.int32], ends: npt.ArrayLike, stiffness: float, components=(2,)
-) -> tuple[int, PenaltyLinks]:
+    model, ends: npt.ArrayLike, stiffness: float, components=(2,)
+) -> tuple[int, PenaltyLinks, npt.NDArray[np.intp]]:
     """A rigid end section: its first wire end (the core's) is the pilot, every other wire end is
-    tied to it on ``components``. Returns the pilot's dof block and the links."""
-    blocks = input_to_block[np.asarray(ends)]
-    pilot = int(blocks[0])
-    pairs = np.column_stack([np.full(len(blocks) - 1, pilot), blocks[1:]])
-    return pilot, PenaltyLinks(pairs, stiffness, components)
+    tied to it on ``components``. Returns the pilot's input point, the links this rank evaluates
+    (all of them on one rank; on several, the pilot's owner's: ``StrandModel.owned_rows``) and
+    their rows among ``ends[1:]``."""
+    ends = np.asarray(ends)
+    points = np.column_stack([np.full(len(ends) - 1, ends[0]), ends[1:]])
+    rows = model.owned_rows(points, "end-section links")
+    return int(ends[0]), PenaltyLinks(model.i2b[points[rows]], stiffness, components), rows
+
+
+def owned_load(model, points: npt.ArrayLike, values: npt.ArrayLike) -> NodalLoad:
+    """Nodal forces/moments ``values`` (n, 6) on the input ``points`` (n,) that this rank owns
+    (each applied once over the ranks)."""
+    points = np.asarray(points).reshape(-1)
+    rows = model.owned_rows(points[:, None], "nodal loads")
+    return NodalLoad(model.i2b[points[rows]], np.asarray(values, float).reshape(-1, 6)[rows])

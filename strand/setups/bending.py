@@ -151,7 +151,7 @@ class UniformBendingTest(TestSetup):
         link_stiffness: float = 1e11,
     ):
         self.model = model
-        g, V, i2b = model.geometry, model.V, model.i2b
+        g, V, i2b = model.geometry, model.V, model.i2b  # i2b: −1 where a point is not local
         L = g.length
         self.zone = 0.4 * L if zone is None else zone
         if not 0 < self.zone < L:
@@ -165,7 +165,8 @@ class UniformBendingTest(TestSetup):
         self.ends1 = model.wire_ends(1)
         self._bc0 = fem.Function(V)
         blocks0 = fem.locate_dofs_topological(V, 0, model.end_vertices(0))
-        self._blocks0 = i2b[self.ends0]
+        self._local0 = np.flatnonzero(i2b[self.ends0] >= 0)  # the end's points on this rank
+        self._blocks0 = i2b[self.ends0[self._local0]]
         assert set(blocks0) == set(self._blocks0)
         bcs = [fem.dirichletbc(self._bc0, blocks0)]
         # end z = L: rotations prescribed, translations tied to the pilot (the core's end)
@@ -176,11 +177,14 @@ class UniformBendingTest(TestSetup):
             dofs = fem.locate_dofs_topological(Vk, 0, vertices1)
             bcs.append(fem.dirichletbc(self._theta1[k], dofs, Vk))
         self.bcs = bcs
-        self.pilot, self.links = pilot_links(i2b, self.ends1, link_stiffness, (0, 1, 2))
-        core = model.core_points()
-        self.strut = CoreStrut(
-            np.column_stack([i2b[core[:-1]], i2b[core[1:]]]), np.diff(g.points[core], axis=0)
+        self.pilot, self.links, self._link_rows = pilot_links(
+            model, self.ends1, link_stiffness, (0, 1, 2)
         )
+        self._link_offset = np.zeros((len(self.ends1) - 1, 3))  # every link's, all ranks
+        core = model.core_points()
+        segments = np.column_stack([core[:-1], core[1:]])
+        mine = model.owned_rows(segments, "core strut segments")
+        self.strut = CoreStrut(i2b[segments[mine]], np.diff(g.points[core], axis=0)[mine])
         self.terms = [self.links, self.strut]
         # the measuring zone: core points at its ends, section heights
         zc = g.points[core, 2]
@@ -200,7 +204,7 @@ class UniformBendingTest(TestSetup):
         half = 0.5 * value * g.length
         theta0, theta1 = half * self.axis, -half * self.axis
         # end z = 0: u = (R(θ0) − I) X about the core's end point (the origin of the section)
-        X = g.points[self.ends0] - g.points[self.ends0[0]]
+        X = g.points[self.ends0[self._local0]] - g.points[self.ends0[0]]
         R0 = rotation_matrix(theta0[None])[0]
         values = self._bc0.x.array.reshape(-1, 6)
         values[self._blocks0, :3] = X @ (R0 - np.eye(3)).T
@@ -210,7 +214,8 @@ class UniformBendingTest(TestSetup):
             self._theta1[k].value = theta1[k]
         R1 = rotation_matrix(theta1[None])[0]
         Y = g.points[self.ends1[1:]] - g.points[self.ends1[0]]
-        self.links.offset = Y @ (R1 - np.eye(3)).T
+        self._link_offset = Y @ (R1 - np.eye(3)).T
+        self.links.offset = self._link_offset[self._link_rows]
 
     def get(self, name: str) -> float:
         self.check_parameter(name)
@@ -222,7 +227,7 @@ class UniformBendingTest(TestSetup):
         return (float(self.sections[0]), float(self.sections[-1]))
 
     def _core_tangents(self, points: npt.NDArray[np.int64]) -> Array:
-        theta = self.model.nodal[self.model.i2b[points], 3:]
+        theta = self.model.node_values()[points, 3:]
         return rotation_matrix(theta) @ np.array([0.0, 0.0, 1.0])
 
     def zone_curvature(self) -> float:
@@ -238,7 +243,7 @@ class UniformBendingTest(TestSetup):
     def end_displacement(self) -> float:
         """Displacement of the free end's pilot along the end section's current axis, m."""
         t = self._core_tangents(self.ends1[:1])[0]
-        return float(self.model.nodal[self.pilot, :3] @ t)
+        return float(self.model.node_values()[self.pilot, :3] @ t)
 
     def state(self) -> UniformBendingState:
         return UniformBendingState(
@@ -247,22 +252,24 @@ class UniformBendingTest(TestSetup):
 
     def end_reactions(self, residual: Array) -> tuple[float, float]:
         """Reaction couples (N m, about b; positive when they bend the +d fibre into tension) at
-        z = 0 and z = L, from the unconstrained residual (``NewtonSolver.unconstrained_residual``).
+        z = 0 and z = L, from the unconstrained residual in the geometry's point order
+        (``NewtonSolver.unconstrained_residual`` through ``StrandModel.gather_nodes``).
         Each end section is a rigid body: M = Σ_j (x_j − x_core) × r_u,j + r_θ,j over its wire
         ends, where at z = L the forces r_u are those of the wires alone (the links' share, which
         holds the free end's translations, is taken out)."""
-        i2b = self.model.i2b
-        x = self.model.positions()
+        u = self.model.node_values()[:, :3]
+        x = self.model.geometry.points + u
 
         def couple(ends, r):
             lever = x[ends] - x[ends[0]]
             return (np.cross(lever, r[:, :3]) + r[:, 3:]).sum(axis=0)
 
-        r1 = residual[i2b[self.ends1]].copy()
-        f_links, _ = self.links.evaluate(self.model.nodal, False)
-        r1[1:, :3] -= f_links[:, 6:9]  # the link on wire end j acts on its second node
-        r1[0, :3] -= -f_links[:, 6:9].sum(axis=0)  # and the opposite on the pilot
-        m0 = couple(self.ends0, residual[i2b[self.ends0]])
+        r1 = residual[self.ends1].copy()
+        # the links' forces on the wire ends, k (u_j − u_pilot − offset_j) (PenaltyLinks)
+        f_links = self.links.k * (u[self.ends1[1:]] - u[self.ends1[0]] - self._link_offset)
+        r1[1:, :3] -= f_links  # the link on wire end j acts on it
+        r1[0, :3] -= -f_links.sum(axis=0)  # and the opposite on the pilot
+        m0 = couple(self.ends0, residual[self.ends0])
         m1 = couple(self.ends1, r1)
         return float(m0 @ self.axis), float(-m1 @ self.axis)
 

@@ -22,8 +22,7 @@ from dolfinx import fem  # isort: skip
 
 from ..model import StrandModel  # isort: skip
 from ..post import section_resultants  # isort: skip
-from ..solver import NodalLoad  # isort: skip
-from .base import TestSetup, pilot_links, quantity  # isort: skip
+from .base import TestSetup, owned_load, pilot_links, quantity  # isort: skip
 
 __all__ = ["SaddleTest", "SaddleState", "MidspanBending", "saddle_weights"]
 
@@ -106,7 +105,7 @@ class SaddleTest(TestSetup):
         link_stiffness: float = 1e11,
     ):
         self.model = model
-        geometry, V, i2b = model.geometry, model.V, model.i2b
+        geometry, V = model.geometry, model.V
         L = geometry.length
         self.direction = np.asarray(direction, float) / np.linalg.norm(direction)
 
@@ -118,10 +117,10 @@ class SaddleTest(TestSetup):
             bcs.append(fem.dirichletbc(0.0, fem.locate_dofs_topological(Vi, 0, end), Vi))
         self.bcs = bcs
         ends = model.wire_ends(1)
-        self.pilot, self.links = pilot_links(i2b, ends, link_stiffness)
+        self.pilot, self.links, _ = pilot_links(model, ends, link_stiffness)
 
         # loads: tension on the pilot, one saddle for each sign of P
-        self.tension_load = NodalLoad([self.pilot], [[0, 0, 1.0, 0, 0, 0]])
+        self.tension_load = owned_load(model, [self.pilot], [[0, 0, 1.0, 0, 0, 0]])
         outer_layer = len(geometry.cable.layers) - 1
         outer = np.flatnonzero(geometry.wire_layer[geometry.point_wire] == outer_layer)
         near = outer[np.abs(geometry.points[outer, 2] - L / 2) <= saddle_length / 2 + 1e-12]
@@ -130,10 +129,10 @@ class SaddleTest(TestSetup):
             idx, forces = saddle_weights(geometry.points[near], sign * self.direction)
             values = np.zeros((len(idx), 6))
             values[:, :3] = sign * forces  # per unit signed load P
-            self.saddles.append(NodalLoad(i2b[near[idx]], values))
+            self.saddles.append(owned_load(model, near[idx], values))
         self.terms = [self.links, self.tension_load, *self.saddles]
         core = model.core_points()
-        self._mid_core = i2b[core[np.argmin(np.abs(geometry.points[core, 2] - L / 2))]]
+        self._mid_core = core[np.argmin(np.abs(geometry.points[core, 2] - L / 2))]
 
     # -- loads -------------------------------------------------------------------------------------
     def set(self, name: str, value: float) -> None:
@@ -169,11 +168,11 @@ class SaddleTest(TestSetup):
     # -- measures ----------------------------------------------------------------------------------
     def end_displacement(self) -> float:
         """Axial displacement of the end section (the pilot's u_z), m."""
-        return float(self.model.nodal[self.pilot, 2])
+        return float(self.model.node_values()[self.pilot, 2])
 
     def midspan_deflection(self) -> float:
         """Lateral displacement of the core at midspan along ``direction``, m."""
-        return float(self.model.nodal[self._mid_core, :3] @ self.direction)
+        return float(self.model.node_values()[self._mid_core, :3] @ self.direction)
 
     def state(self) -> SaddleState:
         return SaddleState(
@@ -195,6 +194,6 @@ class SaddleTest(TestSetup):
         idx = model.core_points()
         zc = g.points[idx, 2] - L / 2
         near = np.abs(zc) <= fit_half_length
-        u = model.nodal[model.i2b[idx[near]], :3] @ self.direction
+        u = model.node_values()[idx[near], :3] @ self.direction
         c2 = np.polyfit(zc[near], u, 2)[0]
         return MidspanBending(self.lateral, -2.0 * c2, -float(M_vec @ b), float(force[2]))

@@ -1,0 +1,52 @@
+"""Who writes what in a distributed run: rank 0 writes the files a serial run writes.
+
+Every rank runs the same code (set-up, solve, recorders, post-processing), so that collective
+calls (gathers of nodal values, pair and cell results; the field writers) line up. The files
+that are not collective (CSV tables, histories, summary, figures) are opened on rank 0 only:
+``root_open`` hands the other ranks a sink. Checks that touch the disk (the results folder) run
+once on rank 0 and their verdict, error included, is shared with ``on_root``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from pathlib import Path
+
+import strand  # noqa: F401
+
+from mpi4py import MPI  # isort: skip
+
+__all__ = ["is_root", "root_open", "on_root", "root_stream"]
+
+
+def is_root(comm: MPI.Comm = MPI.COMM_WORLD) -> bool:
+    """Whether this rank writes the run's files (rank 0)."""
+    return comm.rank == 0
+
+
+def root_open(path: str | Path, mode: str = "w", comm: MPI.Comm = MPI.COMM_WORLD, **kwargs):
+    """``open(path, mode)`` on rank 0; on the other ranks a sink (``os.devnull``)."""
+    return open(path if is_root(comm) else os.devnull, mode, **kwargs)
+
+
+def root_stream(stream, comm: MPI.Comm = MPI.COMM_WORLD):
+    """``stream`` on rank 0 (progress lines are printed once); a sink on the other ranks."""
+    return stream if is_root(comm) else open(os.devnull, "w")  # noqa: SIM115
+
+
+def on_root[T](task: Callable[[], T], comm: MPI.Comm = MPI.COMM_WORLD) -> T:
+    """Run ``task`` on rank 0 and return its result on every rank; an exception it raises is
+    raised on every rank (so that all stop with the same one-line error, none hangs)."""
+    if comm.size == 1:
+        return task()
+    outcome: tuple[bool, object] | None = None
+    if is_root(comm):
+        try:
+            outcome = (True, task())
+        except Exception as e:  # shared, then raised everywhere
+            outcome = (False, e)
+    ok, value = comm.bcast(outcome, root=0)
+    if not ok:
+        raise value  # type: ignore[misc]
+    return value  # type: ignore[return-value]

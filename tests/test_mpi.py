@@ -1,0 +1,175 @@
+"""Distributed runs give the serial run's answer: the same steps (Newton iterations equal), wire
+axial forces, moment–curvature and contact forces on 1, 2 and 3 ranks, for small and large
+sliding, the saddle and the uniform bending test; output and errors once, not once per rank.
+
+Each run is a subprocess (``mpirun`` from the dolfinx wheel's environment: mpich's hydra, which
+oversubscribes the 2 cores of CI without complaint)."""
+
+from __future__ import annotations
+
+import csv
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import strand  # noqa: F401
+
+from strand.geometry import build_geometry  # isort: skip
+from strand.cable import cardinal  # isort: skip
+from strand.contact.element import ContactSettings  # isort: skip
+from strand.model import strand_stencils  # isort: skip
+from strand.partition import DistributionError, owned_rows, slab_destinations  # isort: skip
+
+from test_run import SEVEN_WIRE  # isort: skip
+
+MPIRUN = Path(sys.executable).parent / "mpirun"
+needs_mpirun = pytest.mark.skipif(not MPIRUN.exists(), reason="no mpirun beside the Python")
+
+#: relative agreement (to each column's largest value) required of a distributed run
+RTOL = 1e-8
+#: columns that are not results: wall time, and the final residual (round-off, rank-dependent)
+NOT_RESULTS = {"stage", "seconds", "residual_N"}
+
+
+def strand_run(ranks: int, args: list[str], cwd: Path) -> subprocess.CompletedProcess:
+    cmd = [sys.executable, "-m", "strand", *args]
+    if ranks > 1:
+        cmd = [str(MPIRUN), "-n", str(ranks), *cmd]
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=600)
+
+
+def table(path: Path) -> tuple[list[str], np.ndarray]:
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    keep = [i for i, name in enumerate(rows[0]) if name not in NOT_RESULTS]
+    return [rows[0][i] for i in keep], np.array([[float(r[i]) for i in keep] for r in rows[1:]])
+
+
+def assert_same_results(serial: Path, parallel: Path) -> float:
+    """Every table of ``parallel`` equals ``serial``'s to ``RTOL``; returns the largest relative
+    difference. Iteration and cut counts must be equal."""
+    worst = 0.0
+    for name in ("steps.csv", "axial_forces.csv", "moment_curvature.csv", "slip.csv"):
+        head, a = table(serial / name)
+        head_b, b = table(parallel / name)
+        assert head == head_b and a.shape == b.shape, name
+        if name == "steps.csv":
+            for col in ("iterations", "cuts"):
+                j = head.index(col)
+                assert np.array_equal(a[:, j], b[:, j]), f"{name}: {col} differ"
+        scale = np.maximum(np.abs(a).max(axis=0), 1e-300)
+        rel = np.abs(a - b) / scale
+        j = int(np.argmax(rel.max(axis=0)))
+        assert rel.max() <= RTOL, f"{name}: column {head[j]} differs by {rel.max():.2e}"
+        worst = max(worst, float(rel.max()))
+    return worst
+
+
+@pytest.fixture(scope="module")
+def seven_wire(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("mpi")
+    (folder / "seven.toml").write_text(SEVEN_WIRE)
+    return folder
+
+
+def _run_and_compare(folder: Path, case: list[str], ranks=(2, 3), tag: str = "") -> None:
+    outputs = {}
+    for n in (1, *ranks):
+        out = folder / f"{tag}{n}"
+        done = strand_run(n, ["run", *case, "--out", str(out), "--set", "output.plots=false"],
+                          folder)  # fmt: skip
+        assert done.returncode == 0, done.stderr[-3000:]
+        steps = sum(1 for _ in open(out / "steps.csv")) - 1
+        # progress printed once: one line per step, whatever the number of ranks
+        assert done.stdout.count("Newton its") == steps, done.stdout[-2000:]
+        assert done.stdout.count("done:") == 1
+        outputs[n] = out
+    for n in ranks:
+        assert_same_results(outputs[1], outputs[n])
+    return outputs
+
+
+@needs_mpirun
+def test_seven_wire_saddle_is_the_same_on_1_2_and_3_ranks(seven_wire):
+    out = _run_and_compare(seven_wire, ["seven.toml"], tag="saddle")
+    # the fatigue histories and the fields, written from rank 0 and collectively
+    from strand.history import read_history
+
+    for n in (2, 3):
+        a, b = (read_history(out[k] / "contact_pairs.h5") for k in (1, n))
+        assert a["force"].shape == b["force"].shape
+        assert np.abs(a["force"] - b["force"]).max() <= 1e-6 * np.abs(a["force"]).max()  # float32
+        assert (out[n] / "fields.h5").stat().st_size > 0 and (out[n] / "fatigue.txt").exists()
+
+
+@needs_mpirun
+def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seven_wire):
+    bending = ["--set", 'load.kind="bending"', "--set", "load.zone=0.04", "--set",
+               "load.curvature=0.5", "--set", "steps.curvature=0.1", "--set",
+               "steps.curvature_max=0.2"]  # fmt: skip
+    _run_and_compare(seven_wire, ["seven.toml", *bending], ranks=(3,), tag="bending")
+    large = ["--set", 'contact.model="large"']
+    _run_and_compare(seven_wire, ["seven.toml", *large], ranks=(2,), tag="large")
+
+
+@needs_mpirun
+def test_a_cardinal_piece_with_friction_is_the_same_on_1_2_and_3_ranks(tmp_path):
+    case = ["--set", "mesh.length=0.1", "--set", "load.lateral=1000.0", "--set",
+            "steps.lateral=250.0", "--set", "steps.lateral_max=250.0"]  # fmt: skip
+    out = _run_and_compare(tmp_path, case, tag="cardinal")
+    mk = np.loadtxt(out[1] / "moment_curvature.csv", delimiter=",", skiprows=1)
+    slipped = np.loadtxt(out[1] / "slip.csv", delimiter=",", skiprows=1)[:, 2:]
+    assert len(mk) >= 4 and slipped.max() > 0  # the comparison covers slipping pairs
+
+
+@needs_mpirun
+def test_mesh_and_bad_input_speak_once_under_mpirun(tmp_path):
+    done = strand_run(2, ["mesh", "--no-picture", "--set", "mesh.length=0.05", "--out",
+                          str(tmp_path / "mesh")], tmp_path)  # fmt: skip
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.count("interface  type") == 1 and "2 MPI ranks" in done.stdout
+    bad = strand_run(2, ["run", "--set", "mesh.length=-1"], tmp_path)
+    assert bad.returncode == 2
+    lines = [line for line in bad.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("strand: error:"), bad.stderr
+    # a folder that is not a run's: refused on every rank, said once, nothing written
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "notes.txt").write_text("mine")
+    refused = strand_run(2, ["run", "--set", "mesh.length=0.05", "--out", str(other)], tmp_path)
+    assert refused.returncode == 2 and refused.stderr.count("strand: error:") == 1
+    assert sorted(p.name for p in other.iterdir()) == ["notes.txt"]
+
+
+@pytest.mark.parametrize("nparts", [2, 3, 5])
+def test_slab_partition_keeps_every_stencil_whole_on_its_anchors_owners(nparts):
+    """Whichever rank owns a pair's node a (one of the owners of a cell touching it) holds every
+    cell touching the pair's nodes, and each wire's neighbouring cells (one of overlap)."""
+    g = build_geometry(cardinal(), 0.05, 4e-3)
+    stencils = strand_stencils(g, ContactSettings())
+    owner, ghosts = slab_destinations(g.points[:, 2], g.cells, nparts, stencils)
+    counts = np.bincount(owner, minlength=nparts)
+    assert counts.max() - counts.min() <= 1  # equal slabs
+    holds = [set(np.flatnonzero(owner == r)) for r in range(nparts)]
+    for c, gs in enumerate(ghosts):
+        for r in gs:
+            holds[r].add(c)
+    node_cells = [[] for _ in g.points]
+    for c, (i, j) in enumerate(g.cells):
+        node_cells[i].append(c)
+        node_cells[j].append(c)
+    for st in stencils:
+        for row in st:
+            needed = {c for n in row for c in node_cells[n]}
+            for r in {owner[c] for c in node_cells[row[0]]}:
+                assert needed <= holds[r]
+
+
+def test_owned_rows_refuses_a_stencil_missing_on_its_anchors_rank():
+    stencils = np.array([[0, 5], [7, 2], [-1, 3], [2, 1]])
+    assert owned_rows(stencils, 4).tolist() == [0, 3]  # 7 is a ghost, −1 absent
+    with pytest.raises(DistributionError, match="1 terms have their anchor"):
+        owned_rows(np.array([[0, 5], [1, -1]]), 4)

@@ -63,4 +63,7 @@ def main(case_file: str | None = None) -> None:
 
 
 if __name__ == "__main__":
+    from strand.parallel import serial_only
+
+    serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*sys.argv[1:2])

@@ -86,6 +86,9 @@ def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False)
 
 
 if __name__ == "__main__":
+    from strand.parallel import serial_only
+
+    serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]
     main(
         float(args[0]) if len(args) > 0 else 1.0,

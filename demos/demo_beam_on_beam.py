@@ -42,7 +42,10 @@ from mpi4py import MPI
 from forms import CircularSection, ReissnerBeam
 from strand.contact import PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.mesh import beam_space, polyline_mesh
+from strand.parallel import serial_only
 from strand.solver import NewtonSolver
+
+serial_only("this demo")  # it reads nodes by their local index: one process
 
 # -
 

@@ -31,6 +31,9 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, straight_beam_mesh
+from strand.parallel import serial_only
+
+serial_only("this demo")  # it reads nodes by their local index: one process
 
 # -
 

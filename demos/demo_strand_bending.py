@@ -16,7 +16,9 @@
 # a Hertz normal force (crossed cylinders, or cylinders side by side between the core and layer 1)
 # and Coulomb friction whose stick stiffness is Mindlin's.
 #
-# Units are SI (m, N, Pa, rad).
+# Units are SI (m, N, Pa, rad). The demo also runs distributed, `mpirun -n 2 python
+# demo_strand_bending.py`: every rank runs the script on its slab of the strand, and rank 0 prints
+# and draws (`say` and `rank0` below).
 
 # +
 import strand  # noqa: F401  (loads the dolfinx wheel's libraries before mpi4py/petsc4py)
@@ -33,8 +35,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from strand.case import case_from_dict
+from strand.parallel import is_root
 from strand.post import fibre_model
 from strand.run import run_case
+
+rank0 = is_root()
+
+
+def say(*text):
+    """``print`` on rank 0 only."""
+    if rank0:
+        print(*text)
+
 
 # -
 
@@ -51,7 +63,7 @@ settings = {
     "steps": {"lateral": 250.0},
 }
 case = case_from_dict(settings, source="demo")
-print(case.contact)
+say(case.contact)
 
 # ## Run
 #
@@ -74,7 +86,7 @@ t = result.tensioned
 middle = np.abs(t.z - 0.2) < 0.1
 for layer, expected in enumerate(reference["wire_force"]):
     model = t.axial[middle & (t.layer == layer)].mean()
-    print(f"layer {layer}: {model:7.1f} N (fibre model {expected:7.1f} N)")
+    say(f"layer {layer}: {model:7.1f} N (fibre model {expected:7.1f} N)")
     assert abs(model / expected - 1) < 0.08
     if layer < 2:  # steel: more than with rigid contacts
         assert model > expected
@@ -107,12 +119,13 @@ for run, label in ((result, "μ = 0.3 / 0.5 (Cardinal)"), (slippery, "μ = 0.05"
     )
     residual = [1e3 * s.state.deflection for s in run.unloaded_steps]
     peak = max(1e3 * abs(s.state.deflection) for s in lateral)
-    print(f"{label}: peak {peak:.3f} mm, back at P = 0: {residual[0]:+.3f}, {residual[1]:+.3f} mm")
+    say(f"{label}: peak {peak:.3f} mm, back at P = 0: {residual[0]:+.3f}, {residual[1]:+.3f} mm")
 ax.set_xlabel("midspan deflection (mm)")
 ax.set_ylabel("lateral load (kN)")
 ax.legend()
 ax.grid(alpha=0.3)
-fig.savefig("results/demo_strand_bending/loops.png", dpi=110)
+if rank0:
+    fig.savefig("results/demo_strand_bending/loops.png", dpi=110)
 
 lateral = slippery.cycle_steps
 assert abs(lateral[-1].state.deflection) > 0.05 * max(abs(s.state.deflection) for s in lateral)

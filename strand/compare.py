@@ -103,12 +103,13 @@ def compare_case(
     also written to ``comparison.txt`` there. Both folders are checked before either run
     (``folder.prepare_results_folder``; ``overwrite`` replaces an earlier comparison)."""
     from .folder import prepare_results_folder
+    from .parallel import is_root, on_root, root_stream
     from .run import run_case
 
-    stream = stream or sys.stdout
+    stream = root_stream(stream or sys.stdout)
     folder = Path(folder or Path(case.output.folder) / "sliding_comparison")
     for model in ("small", "large"):
-        prepare_results_folder(folder / model, overwrite)
+        on_root(lambda model=model: prepare_results_folder(folder / model, overwrite))
     results = {}
     for model in ("small", "large"):
         print(f"--- contact model: {model} sliding ---", file=stream, flush=True)
@@ -140,7 +141,7 @@ def compare_case(
             difference_table(small.peak, large.peak, n_layers),
             f"speed ratio (large / small wall time): {large.seconds / small.seconds:.2f}",
         ]
-        if case.output.plots:
+        if case.output.plots and is_root():
             path = overlay_figure(
                 small.peak, large.peak, n_layers,
                 f"{case.cable.name}, L = {case.mesh.length:g} m: wire axial forces at the "
@@ -148,7 +149,8 @@ def compare_case(
             )  # fmt: skip
             lines.append(f"figure: {path}")
     text = "\n".join(lines) + "\n"
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "comparison.txt").write_text(text)
+    if is_root():
+        folder.mkdir(parents=True, exist_ok=True)
+        (folder / "comparison.txt").write_text(text)
     print(text, file=stream, flush=True)
     return text

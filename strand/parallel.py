@@ -10,6 +10,7 @@ once on rank 0 and their verdict, error included, is shared with ``on_root``.
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Callable
 from pathlib import Path
 
@@ -17,7 +18,7 @@ import strand  # noqa: F401
 
 from mpi4py import MPI  # isort: skip
 
-__all__ = ["is_root", "root_open", "on_root", "root_stream"]
+__all__ = ["is_root", "root_open", "on_root", "root_stream", "serial_only"]
 
 
 def is_root(comm: MPI.Comm = MPI.COMM_WORLD) -> bool:
@@ -50,3 +51,12 @@ def on_root[T](task: Callable[[], T], comm: MPI.Comm = MPI.COMM_WORLD) -> T:
     if not ok:
         raise value  # type: ignore[misc]
     return value  # type: ignore[return-value]
+
+
+def serial_only(what: str, comm: MPI.Comm = MPI.COMM_WORLD) -> None:
+    """Stop a script that runs on one process only when started on several ranks: one line
+    (from rank 0) and exit code 2 on every rank, before any computing."""
+    if comm.size > 1:
+        if is_root(comm):
+            print(f"strand: {what} runs on one process: start it without mpirun", file=sys.stderr)
+        raise SystemExit(2)

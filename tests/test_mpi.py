@@ -173,3 +173,22 @@ def test_owned_rows_refuses_a_stencil_missing_on_its_anchors_rank():
     assert owned_rows(stencils, 4).tolist() == [0, 3]  # 7 is a ghost, −1 absent
     with pytest.raises(DistributionError, match="1 terms have their anchor"):
         owned_rows(np.array([[0, 5], [1, -1]]), 4)
+
+
+ROOT = Path(__file__).parents[1]
+SERIAL_ONLY = [
+    *sorted(p for p in (ROOT / "demos").glob("demo_*.py") if p.stem != "demo_strand_bending"),
+    ROOT / "benchmarks" / "mesh_build.py",
+]
+
+
+@needs_mpirun
+@pytest.mark.parametrize("script", SERIAL_ONLY, ids=[p.stem for p in SERIAL_ONLY])
+def test_serial_scripts_refuse_mpirun_in_one_line(script, tmp_path):
+    """Demos that index nodes locally and the benchmarks (which compare variants in one process)
+    stop before computing, with one line and exit code 2, instead of hanging."""
+    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert done.returncode == 2 and len(lines) == 1, done.stderr[-2000:]
+    assert "start it without mpirun" in lines[0] and not list(tmp_path.iterdir())

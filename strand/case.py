@@ -46,6 +46,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     fields = true             # field time series: XDMF (+ HDF5) for ParaView and meshio
     vtx = true                # with fields: also VTX (ADIOS2 .bp; as large again, ~250 MB here)
     plots = true              # PNG figures at the end
+    checkpoint = true         # checkpoint.h5: the last converged state (strand run --restart),
+                              # and tensioned.h5: the state before the cycle (2 MB each here)
 
     [fatigue]
     outputs = true            # contact pair and wire section histories, and the fatigue report
@@ -132,6 +134,7 @@ class OutputSettings:
     fields: bool = True
     vtx: bool = True
     plots: bool = True
+    checkpoint: bool = True  # checkpoint.h5 (last converged state) and tensioned.h5
 
 
 @dataclass(frozen=True)

@@ -96,7 +96,7 @@ def _run(args) -> int:
     case = load_case(args.case, args.set)  # every setting is checked here, before computing
     from .run import run_case
 
-    result = run_case(case, args.out, overwrite=args.overwrite)
+    result = run_case(case, args.out, overwrite=args.overwrite, restart=args.restart)
     return 130 if result.interrupted else 3 if result.failure else 0
 
 
@@ -136,6 +136,11 @@ def main(argv: list[str] | None = None) -> int:
         "--overwrite", action="store_true",
         help="replace the results of an earlier run in the folder (refused otherwise)",
     )  # fmt: skip
+    run.add_argument(
+        "--restart", metavar="CHECKPOINT",
+        help="continue from a checkpoint of an earlier run of the same strand (its "
+        "checkpoint.h5 or tensioned.h5) with this case's loads; give a new --out",
+    )  # fmt: skip
     mesh = sub.add_parser(
         "mesh", help="build the strand mesh and contact pairs; print and draw them"
     )
@@ -169,6 +174,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     from .cable import CableError
     from .case import CaseError
+    from .checkpoint import CheckpointError
     from .folder import FolderError
 
     try:
@@ -177,7 +183,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "compare":
             return _compare(args)
         return _run(args)
-    except (CableError, CaseError, FolderError) as e:
+    except (CableError, CaseError, FolderError, CheckpointError) as e:
         from .parallel import is_root
 
         if is_root():  # one line, not one per rank

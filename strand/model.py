@@ -96,10 +96,6 @@ class StrandModel:
                 f"{len(geometry.pairs)}: each must be evaluated on exactly one"
             )
 
-    def stencils(self) -> list[npt.NDArray[np.int64]]:
-        """What this model's terms couple (``strand_stencils``)."""
-        return strand_stencils(self.geometry, self.contact_settings)
-
     def owned_rows(self, points: npt.ArrayLike, what: str = "terms") -> npt.NDArray[np.intp]:
         """Rows of ``points`` (P, k input node indices, anchor first) that this rank evaluates:
         those whose anchor it owns (``partition.owned_rows``); all rows on one rank."""

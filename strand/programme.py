@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .solver import LoadStepper, StepRecord
+from .solver import LoadStepper, RampState, StepRecord
 
-__all__ = ["Stage", "LoadProgramme", "run_programme", "cycle_stages"]
+__all__ = ["Stage", "LoadProgramme", "Position", "run_programme", "cycle_stages"]
 
 
 @dataclass(frozen=True)
@@ -99,21 +99,42 @@ def cycle_stages(
     ]
 
 
+@dataclass(frozen=True)
+class Position:
+    """Where a run stands in its programme after a converged step: the stage under way (index)
+    and its ramp's state (``RampState``), from which ``run_programme`` can continue."""
+
+    stage: int
+    ramp: RampState | None = None
+
+
 def run_programme(
-    problem, programme: LoadProgramme, on_step: Callable[[Stage, StepRecord], None] | None = None
+    problem,
+    programme: LoadProgramme,
+    on_step: Callable[[Stage, StepRecord, Position], None] | None = None,
+    start: Position | None = None,
 ) -> None:
     """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
-    record)`` after every committed step. Raises ``LoadStepFailure`` when a step cannot be cut
-    small enough to converge (the last converged state stays in the problem)."""
+    record, position)`` after every committed step. ``start``: continue from a position (the
+    problem already in the state reached there: ``strand.checkpoint``). Raises
+    ``LoadStepFailure`` when a step cannot be cut small enough to converge (the last converged
+    state stays in the problem)."""
     setup = problem.setup
-    for stage in programme.stages:
+    first = start.stage if start is not None else 0
+    for index, stage in enumerate(programme.stages):
+        if index < first:
+            continue
         stepper = LoadStepper(
             problem.solver, stage.first_step, stage.min_step, max_step=stage.max_step,
             growth=stage.growth, extrapolate=stage.extrapolate,
-            on_step=(lambda rec, stage=stage: on_step(stage, rec)) if on_step else None,
         )  # fmt: skip
+        if on_step is not None:
+            stepper.on_step = lambda rec, stage=stage, index=index, stepper=stepper: on_step(
+                stage, rec, Position(index, stepper.state)
+            )
 
         def set_load(value, name=stage.parameter):
             setup.set(name, value)
 
-        stepper.ramp(set_load, setup.get(stage.parameter), stage.target, stage.name)
+        resume = start.ramp if start is not None and index == first else None
+        stepper.ramp(set_load, setup.get(stage.parameter), stage.target, stage.name, resume)

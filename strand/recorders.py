@@ -32,6 +32,7 @@ __all__ = [
     "SmallSlidingMonitor",
     "PairHistory",
     "WireSectionHistory",
+    "CheckpointRecorder",
 ]
 
 
@@ -66,6 +67,8 @@ class StepContext:
 
     _residual: Any = field(default=None, repr=False)
     _pairs: Any = field(default=None, repr=False)
+    #: where the run stands in its programme (``programme.Position``), for checkpoints
+    position: Any = None
 
     @property
     def pairs(self) -> dict:
@@ -394,3 +397,30 @@ class WireSectionHistory(_CycleHistory):
 
     def close(self) -> None:
         self.writer.close()
+
+
+class CheckpointRecorder:
+    """``checkpoint.h5``: the last converged state with everything the next step starts from
+    (``strand.checkpoint``), replaced after every step, so that ``strand run --restart`` can
+    continue a stopped run; ``tensioned.h5``: the same at the last step before the cycle, the
+    state other load cycles can start from."""
+
+    def __init__(self, folder: Path, problem):
+        self.folder = Path(folder)
+        self.problem = problem
+        self.seconds = 0.0
+
+    def record(self, ctx: StepContext) -> None:
+        from .checkpoint import capture, write_checkpoint
+
+        if ctx.position is None:
+            return
+        t0 = time.perf_counter()
+        state = capture(self.problem, ctx.step.number, ctx.step.time, ctx.position)
+        write_checkpoint(self.folder / "checkpoint.h5", state)
+        if not ctx.cycle:
+            write_checkpoint(self.folder / "tensioned.h5", state)
+        self.seconds += time.perf_counter() - t0
+
+    def close(self) -> None:
+        pass

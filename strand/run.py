@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
@@ -28,6 +29,7 @@ import numpy as np
 import strand  # noqa: F401
 
 from .case import Case  # isort: skip
+from .checkpoint import CheckpointError, capture, read_checkpoint, restore  # isort: skip
 from .folder import RUN_MARKER, prepare_results_folder  # isort: skip
 from .parallel import is_root, on_root, root_stream  # isort: skip
 from .geometry import LINE, build_geometry  # isort: skip
@@ -40,9 +42,10 @@ from .post import (  # isort: skip
     saddle_beam_reference,
 )
 from .problem import StrandProblem  # isort: skip
-from .programme import LoadProgramme, Stage, cycle_stages, run_programme  # isort: skip
+from .programme import LoadProgramme, Position, Stage, cycle_stages, run_programme  # isort: skip
 from .recorders import (  # isort: skip
     AxialForceTable,
+    CheckpointRecorder,
     BendingTable,
     FieldSeries,
     KeyStates,
@@ -87,6 +90,8 @@ class RunResult:
     #: solver wall times (s): residual/jacobian callbacks, pair terms, insertion, whole solves
     timings: dict = field(default_factory=dict)
     cycle_parameter: str = "lateral"
+    #: the state kept in memory at the steps ``run_programme_with_outputs(keep=)`` chose
+    kept: object | None = None
 
     @property
     def iterations(self) -> int:
@@ -173,28 +178,53 @@ def setup_and_programme(case: Case):
 
 
 def run_case(
-    case: Case, folder: str | Path | None = None, stream=None, overwrite: bool = False
+    case: Case,
+    folder: str | Path | None = None,
+    stream=None,
+    overwrite: bool = False,
+    restart: str | Path | None = None,
 ) -> RunResult:
     """Run ``case``; outputs go to ``folder`` (default: the case's output folder), which must be
     new or empty, or hold an earlier run to be replaced with ``overwrite`` (``FolderError``
-    otherwise, raised before any computing)."""
+    otherwise, raised before any computing). ``restart``: a checkpoint (``checkpoint.h5`` of an
+    earlier run of the same strand) to continue from, with this case's load programme; the new
+    folder's first step is the checkpoint's state."""
     stream = root_stream(stream or sys.stdout)  # printed once in a distributed run
-    folder = folder or case.output.folder
+    t_start = time.perf_counter()
+    checkpoint = None
+    if restart is not None:
+        checkpoint = read_checkpoint(restart)
+    folder = _results_folder(case, folder or case.output.folder, overwrite, restart)
+    problem, programme = build_problem(case, stream)
+    try:
+        start = None if checkpoint is None else _restart(problem, programme, checkpoint, restart)
+        return run_programme_with_outputs(case, problem, programme, folder, stream, start, t_start)
+    finally:
+        problem.solver.destroy()
+
+
+def _results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
+    """The run's folder, prepared on rank 0 (``folder.prepare_results_folder``) with the run's
+    settings written first; every rank gets the verdict."""
 
     def prepare() -> Path:
         path = prepare_results_folder(folder, overwrite)
-        (path / RUN_MARKER).write_text(_settings_text(case))
+        text = _settings_text(case)
+        if restart is not None:
+            text += f"restart = {str(restart)!r}\n"
+        (path / RUN_MARKER).write_text(text)
         return path
 
-    folder = on_root(prepare)  # rank 0 checks and writes; every rank gets its verdict
-    result = RunResult(folder)
-    t_start = time.perf_counter()
+    return on_root(prepare)
 
+
+def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme]:
+    """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
+    one line about it on ``stream``."""
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     options = NewtonOptions(atol=case.steps.tolerance, max_it=case.steps.max_iterations)
     setup, programme = setup_and_programme(case)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
-    evaluator = CellEvaluator(problem.model)
     size = problem.model.comm.size
     print(
         f"{case.cable.name}: L = {case.mesh.length:g} m, {len(geometry.wire_layer)} wires, "
@@ -212,6 +242,62 @@ def run_case(
             file=stream,
             flush=True,
         )
+    return problem, programme
+
+
+def _restart(problem: StrandProblem, programme: LoadProgramme, checkpoint, path) -> Start:
+    """Put ``checkpoint`` into ``problem`` and say where the programme continues from; a
+    checkpoint of another strand or programme is refused in one line (``CheckpointError``)."""
+    g = problem.geometry
+    if checkpoint.w.shape != (len(g.points), 6) or any(
+        len(v) != len(g.pairs) for v in checkpoint.pairs.values()
+    ):
+        raise CheckpointError(
+            f"{path}: written for another strand ({len(checkpoint.w)} points, "
+            f"{len(next(iter(checkpoint.pairs.values()), []))} contact pairs; this case has "
+            f"{len(g.points)} and {len(g.pairs)}): give the case it was written with"
+        )
+    if not 0 <= checkpoint.stage < len(programme.stages):
+        raise CheckpointError(
+            f"{path}: its stage {checkpoint.stage} is not in this case's load programme "
+            f"({len(programme.stages)} stages)"
+        )
+    position = restore(problem, checkpoint)
+    stage = programme.stages[checkpoint.stage]
+    state = problem.setup.state()
+    step = RunStep(checkpoint.number, stage.name, stage.parameter,
+                   problem.setup.get(stage.parameter), checkpoint.time, 0, 0, 0.0, 0.0,
+                   state)  # fmt: skip
+    return Start(position, step)
+
+
+@dataclass(frozen=True)
+class Start:
+    """Where a run starts when not from the unloaded strand: the programme ``position`` and the
+    record of the step whose state the problem holds (written again as the run's first row)."""
+
+    position: Position
+    step: RunStep
+
+
+def run_programme_with_outputs(
+    case: Case,
+    problem: StrandProblem,
+    programme: LoadProgramme,
+    folder: Path,
+    stream,
+    start: Start | None = None,
+    t_start: float | None = None,
+    keep: Callable[[RunStep], bool] | None = None,
+) -> RunResult:
+    """Take ``problem`` through ``programme`` (from ``start``, or from the beginning) with the
+    case's recorders writing into ``folder``, then write the summary, fatigue report and
+    figures. ``keep(step)``: the steps after which the state is kept in memory as
+    ``RunResult.kept`` (a ``Checkpoint``; the last such step's)."""
+    t_start = time.perf_counter() if t_start is None else t_start
+    result = RunResult(folder)
+    geometry = problem.geometry
+    evaluator = CellEvaluator(problem.model)
     result.cycle_parameter = programme.cycle_parameter
     key_states = KeyStates()
     su = problem.setup
@@ -233,6 +319,8 @@ def run_case(
             PairHistory(folder, problem.model, cycle),
             WireSectionHistory(folder, problem.model, initial, su.direction, cycle),
         ]
+    if case.output.checkpoint:
+        recorders.append(CheckpointRecorder(folder, problem))
     result.setup_seconds = time.perf_counter() - t_start
     progress = _Progress(
         programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3), "curvature": ("1/m", 1.0)},
@@ -240,31 +328,44 @@ def run_case(
     )  # fmt: skip
     output_seconds = 0.0
 
-    def on_step(stage: Stage, rec: StepRecord) -> None:
+    def record(step: RunStep, position: Position) -> StepContext:
         nonlocal output_seconds
         t_out = time.perf_counter()
-        value = problem.setup.get(stage.parameter)
-        index = next(i for i, s in enumerate(programme.stages) if s is stage)
-        step = RunStep(
-            len(result.steps) + 1, rec.stage, stage.parameter, value,
-            programme.time(index, value), rec.iterations, rec.cuts, rec.seconds,
-            rec.residuals[-1] if rec.residuals else 0.0, problem.setup.state(),
-        )  # fmt: skip
         result.steps.append(step)
         ctx = StepContext(
-            step, problem, stage.parameter == programme.cycle_parameter,
+            step, problem, step.parameter == programme.cycle_parameter, position=position,
             _evaluate=lambda: cell_results(problem.model, problem.setup.direction, evaluator),
         )  # fmt: skip
         for r in recorders:
             r.record(ctx)
+        if keep is not None and keep(step):
+            result.kept = capture(problem, step.number, step.time, position)
         output_seconds += time.perf_counter() - t_out
+        return ctx
+
+    def on_step(stage: Stage, rec: StepRecord, position: Position) -> None:
+        value = problem.setup.get(stage.parameter)
+        index = position.stage
+        number = (start.step.number if start else 0) + len(result.steps) + (0 if start else 1)
+        step = RunStep(
+            number, rec.stage, stage.parameter, value,
+            programme.time(index, value), rec.iterations, rec.cuts, rec.seconds,
+            rec.residuals[-1] if rec.residuals else 0.0, problem.setup.state(),
+        )  # fmt: skip
+        ctx = record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
         progress.step(stage, value, rec.iterations, rec.cuts, extra)
 
     try:
+        if start is not None:  # the state the run starts from, as its first row
+            record(start.step, start.position)
+            progress.previous[start.step.parameter] = start.step.load
+            for i in range(start.position.stage):  # the stages done before it
+                s = programme.stages[i]
+                progress.previous[s.parameter] = s.target
         with Interrupt(stream) as interrupt:
             problem.solver.interrupt = interrupt
-            run_programme(problem, programme, on_step)
+            run_programme(problem, programme, on_step, start.position if start else None)
     except RunInterrupted as stop:
         result.failure, result.interrupted = str(stop), True
         print(f"strand: stopped: {stop}", file=stream, flush=True)
@@ -306,7 +407,6 @@ def run_case(
                 paths += fatigue_figures(folder, report)
             for path in paths:
                 print(f"figure: {path}", file=stream)
-    problem.solver.destroy()
     return result
 
 

@@ -45,6 +45,7 @@ __all__ = [
     "NewtonSolver",
     "LoadStepper",
     "StepRecord",
+    "RampState",
     "LoadStepFailure",
     "RunInterrupted",
     "Interrupt",
@@ -457,6 +458,15 @@ def _insert_stencils(sp, stencils: npt.NDArray[np.int32]) -> None:
 
 
 @dataclass
+class RampState:
+    """Where a ramp stands after a converged step: the increment it tries next, and the load
+    and unknowns increments (local array) of that step (the secant predictor's), if any."""
+
+    step: float
+    previous: tuple[float, npt.NDArray[np.float64]] | None
+
+
+@dataclass
 class StepRecord:
     """One converged load step."""
 
@@ -545,11 +555,20 @@ class LoadStepper:
         self.on_step = on_step
         self.extrapolate = extrapolate
         self.history: list[StepRecord] = []
+        #: the ramp's state after its last converged step (``ramp(resume=...)`` continues it)
+        self.state: RampState | None = None
 
     def ramp(
-        self, set_load: Callable[[float], None], start: float, end: float, stage: str = "load"
+        self,
+        set_load: Callable[[float], None],
+        start: float,
+        end: float,
+        stage: str = "load",
+        resume: RampState | None = None,
     ):
-        """Move the load parameter from ``start`` to ``end``; returns the records of this ramp."""
+        """Move the load parameter from ``start`` to ``end``; returns the records of this ramp.
+        ``resume``: continue a ramp from one of its converged steps (``RampState``, as
+        ``self.state`` held it there), so that the steps taken are those of the whole ramp."""
         records = []
         sign = 1.0 if end >= start else -1.0
         current = start
@@ -557,6 +576,8 @@ class LoadStepper:
         cuts = 0
         w = self.solver.w.x.array
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
+        if resume is not None:
+            step, previous = resume.step, resume.previous
         while sign * (end - current) > 1e-12 * max(1.0, abs(end)):
             if self.solver.stop_requested():
                 raise RunInterrupted(
@@ -575,14 +596,15 @@ class LoadStepper:
                 rec = StepRecord(
                     stage, trial, result.iterations, result.residuals, result.seconds, cuts
                 )
-                records.append(rec)
-                self.history.append(rec)
-                if self.on_step is not None:
-                    self.on_step(rec)
                 current = trial
                 if result.iterations <= self.easy_iterations:
                     step = min(step * self.growth, self.max_step)
                 cuts = 0
+                self.state = RampState(step, previous)
+                records.append(rec)
+                self.history.append(rec)
+                if self.on_step is not None:
+                    self.on_step(rec)
             else:
                 self.solver.rollback()
                 set_load(current)

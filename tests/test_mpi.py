@@ -93,6 +93,7 @@ def _run_and_compare(folder: Path, case: list[str], ranks=(2, 3), tag: str = "")
 
 
 @needs_mpirun
+@pytest.mark.slow
 def test_seven_wire_saddle_is_the_same_on_1_2_and_3_ranks(seven_wire):
     out = _run_and_compare(seven_wire, ["seven.toml"], tag="saddle")
     # the fatigue histories and the fields, written from rank 0 and collectively
@@ -106,6 +107,7 @@ def test_seven_wire_saddle_is_the_same_on_1_2_and_3_ranks(seven_wire):
 
 
 @needs_mpirun
+@pytest.mark.slow
 def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seven_wire):
     bending = ["--set", 'load.kind="bending"', "--set", "load.zone=0.04", "--set",
                "load.curvature=0.5", "--set", "steps.curvature=0.1", "--set",
@@ -116,6 +118,7 @@ def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seve
 
 
 @needs_mpirun
+@pytest.mark.slow
 def test_a_cardinal_piece_with_friction_is_the_same_on_1_2_and_3_ranks(tmp_path):
     case = ["--set", "mesh.length=0.1", "--set", "load.lateral=1000.0", "--set",
             "steps.lateral=250.0", "--set", "steps.lateral_max=250.0"]  # fmt: skip

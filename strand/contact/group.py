@@ -189,6 +189,40 @@ class PairGroup:
         self._friction = None
         self._rollback_kinematics()
 
+    # -- checkpoints -------------------------------------------------------------------------------
+    #: the per-pair arrays of ``history_arrays``, in order
+    HISTORY = ("t_old", "n_old", "p_old", "slip", "sliding", "work", "gap", "force", "traction",
+               "normal", "slipping")  # fmt: skip
+
+    def history_arrays(self) -> dict[str, Array]:
+        """Everything the next step starts from, per pair (first axis: the group's pairs): the
+        committed traction, normal and normal force, the friction history, the last state, and
+        what the kinematics keep beyond the unknowns (``_kinematics_history``)."""
+        s, h = self.state, self.history
+        values = (self._t_old, self._n_old, self._p_old, h.slip, h.sliding, h.work, s.gap,
+                  s.force, s.traction, s.normal, s.slipping)  # fmt: skip
+        out = {k: np.array(v, copy=True) for k, v in zip(self.HISTORY, values, strict=True)}
+        return out | {k: np.array(v, copy=True) for k, v in self._kinematics_history().items()}
+
+    def restore_history(self, arrays: dict[str, Array], w: Array) -> None:
+        """Return to a committed state: ``arrays`` as ``history_arrays`` gave them, ``w`` the
+        nodal unknowns (n_blocks, 6) of that state."""
+        a = {k: np.array(v, copy=True) for k, v in arrays.items()}
+        self._t_old, self._n_old, self._p_old = a["t_old"], a["n_old"], a["p_old"]
+        self.history = FrictionHistory(a["slip"], a["sliding"], a["work"])
+        self.state = ContactState(a["gap"], a["force"], a["traction"], a["normal"],
+                                  a["slipping"].astype(bool))  # fmt: skip
+        self._restore_kinematics_history(a)
+        self._last, self._friction = None, None
+        self._commit_kinematics(w[self.stencils])
+
+    def _kinematics_history(self) -> dict[str, Array]:
+        """Per-pair arrays the kinematics keep that the unknowns do not give back."""
+        return {}
+
+    def _restore_kinematics_history(self, arrays: dict[str, Array]) -> None:
+        """Set what ``_kinematics_history`` returned."""
+
     def _commit_kinematics(self, W: Array) -> None:
         """Keep what the kinematics need from the converged stencil unknowns W."""
 

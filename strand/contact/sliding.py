@@ -401,6 +401,13 @@ class SlidingGroup(PairGroup):
             )
         super().commit()
 
+    def _kinematics_history(self) -> dict[str, Array]:
+        return {"segment": self._committed[0], "parameter": self._committed[1]}
+
+    def _restore_kinematics_history(self, arrays: dict[str, Array]) -> None:
+        self.segment = np.array(arrays["segment"], dtype=self.segment.dtype)
+        self.parameter = np.array(arrays["parameter"], dtype=float)
+
     def _commit_kinematics(self, W: Array) -> None:
         self._w_old = W.copy()
         self._committed = (self.segment.copy(), self.parameter.copy())

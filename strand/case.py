@@ -29,6 +29,9 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     saddle_length = 0.02      # m, axial length of the saddle at midspan
     zone = 0.4                # m, bending: central zone where curvature is measured
     direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load / stretched fibre
+    sweep = []                # amplitudes of lateral (or curvature) to run, each from the same
+                              # tensioned state, into <folder>/<parameter>_<amplitude>/, with
+                              # sweep.csv beside them; [] runs lateral (curvature) alone
 
     [steps]
     tension = 10e3            # N, first tension increment (grows ×growth after easy steps)
@@ -113,6 +116,7 @@ class LoadSettings:
     saddle_length: float = 0.02  # m
     zone: float = 0.4  # m
     direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    sweep: tuple[float, ...] = ()  # amplitudes (N or 1/m), each cycled from one tensioned state
 
 
 @dataclass(frozen=True)
@@ -223,6 +227,10 @@ def _value(section: str, key: str, value, default):
             raise CaseError(f"{where}: expected [x, y, 0], a direction across the strand axis")
         if key == "cycle" and not value:
             raise CaseError(f"{where}: expected at least one lateral target")
+        if key == "sweep" and not all(v > 0 for v in value):
+            raise CaseError(f"{where}: expected positive amplitudes (the cycle gives the signs)")
+        if key == "sweep" and len(set(value)) != len(value):
+            raise CaseError(f"{where}: an amplitude is listed twice")
         return tuple(float(v) for v in value)
     if isinstance(default, str):
         if not isinstance(value, str):

@@ -91,11 +91,20 @@ def _mesh(args) -> int:
 
 
 def _run(args) -> int:
-    from .case import load_case
+    from .case import CaseError, load_case
 
     case = load_case(args.case, args.set)  # every setting is checked here, before computing
     from .run import run_case
 
+    if case.load.sweep:
+        from .run import run_sweep
+
+        if args.restart:
+            raise CaseError("--restart: a sweep starts from its own tensioned state; give one")
+        results = run_sweep(case, args.out, overwrite=args.overwrite)
+        if any(r.interrupted for r in results):
+            return 130
+        return 3 if any(r.failure for r in results) else 0
     result = run_case(case, args.out, overwrite=args.overwrite, restart=args.restart)
     return 130 if result.interrupted else 3 if result.failure else 0
 

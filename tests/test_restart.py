@@ -118,3 +118,30 @@ def test_checkpoints_are_written_as_the_run_goes_and_bad_ones_refused(seven, tmp
                  str(tmp_path / "third")])  # fmt: skip
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and "cannot read the checkpoint" in err
+
+
+def test_a_sweep_cycles_each_amplitude_from_one_tensioned_state_as_separate_runs_would(
+    seven, tmp_path
+):
+    """Each amplitude of ``[load] sweep`` starts from the one tensioned state; its outputs are
+    those of a separate run of that amplitude (tension included), to 1e-10."""
+    out = tmp_path / "sweep"
+    args = ["run", str(seven), "--out", str(out), "--set", "load.sweep=[150.0, 300.0]"]
+    assert main([*args, *sum((["--set", s] for s in QUIET), [])]) == 0
+    tension_steps = len(steps(out / "tension")[1])
+    for amplitude in (150.0, 300.0):
+        alone = tmp_path / f"alone_{amplitude:g}"
+        case = load_case(seven, [*QUIET, f"load.lateral={amplitude}"])
+        run_case(case, alone)
+        member = out / f"lateral_{amplitude:g}"
+        # the member's first row is the tensioned state, the last tension step of a separate run
+        assert_continues(alone, member, tension_steps, 1e-10)
+        assert (member / "summary.txt").read_text().count("after tension") == 1
+    with open(out / "sweep.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [float(r["amplitude_N"]) for r in rows] == [150.0, 300.0]
+    peaks = [float(r["peak_deflection"]) for r in rows]
+    _, alone = steps(tmp_path / "alone_300")
+    assert peaks[1] == pytest.approx(alone[:, 4].max(), rel=1e-10) and peaks[0] < peaks[1]
+    # a second sweep into the folder is refused unless --overwrite
+    assert main(args) == 2

@@ -137,7 +137,7 @@ class AxialForceTable:
     layer, initial z (m) and current angle φ (deg), and the value of the set-up's load
     ``parameter`` (in ``unit``) at the step."""
 
-    FORMAT = ["%d", "%.6g", "%d", "%d", "%d", "%.6e", "%.2f", "%.6e"]
+    FORMAT = ["%d", "%.6g", "%d", "%d", "%d", "%.6e", "%.2f", "%.9e"]
 
     def __init__(self, folder: Path, parameter: str, unit: str):
         self.parameter = parameter

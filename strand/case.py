@@ -50,7 +50,7 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     vtx = true                # with fields: also VTX (ADIOS2 .bp; as large again, ~250 MB here)
     plots = true              # PNG figures at the end
     checkpoint = true         # checkpoint.h5: the last converged state (strand run --restart),
-                              # and tensioned.h5: the state before the cycle (2 MB each here)
+                              # and tensioned.h5: the state before the cycle (3.4 MB each here)
 
     [fatigue]
     outputs = true            # contact pair and wire section histories, and the fatigue report

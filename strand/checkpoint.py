@@ -52,9 +52,10 @@ VERSION = 1
 @dataclass
 class Checkpoint:
     """A converged state: step ``number`` (steps so far) at programme ``time``, the set-up's
-    ``loads`` by parameter, the ``position`` in the programme, the nodal unknowns ``w`` (N, 6)
-    and the ramp's last increment of them ``dw`` (N, 6, or None) in the geometry's point order,
-    and the contact history ``pairs`` (per name, arrays over the geometry's pairs)."""
+    ``loads`` by parameter, the position in the programme (the ``stage`` under way, the ramp's
+    next increment ``step`` and last ``load_increment``, None at none), the nodal unknowns ``w``
+    (N, 6) and the ramp's last increment of them ``dw`` (N, 6, or None) in the geometry's point
+    order, and the contact history ``pairs`` (per name, arrays over the geometry's pairs)."""
 
     number: int
     time: float
@@ -65,16 +66,6 @@ class Checkpoint:
     w: Array
     dw: Array | None
     pairs: dict[str, np.ndarray] = field(default_factory=dict)
-
-    @property
-    def position(self) -> Position:
-        """Where ``run_programme`` continues from."""
-        if self.step is None:
-            return Position(self.stage, None)
-        previous = None
-        if self.load_increment is not None and self.dw is not None:
-            previous = (self.load_increment, self.dw)  # geometry order: ``restore`` localises
-        return Position(self.stage, RampState(self.step, previous))
 
 
 def _block_points(model) -> npt.NDArray[np.int64]:
@@ -129,12 +120,13 @@ def restore(problem, checkpoint: Checkpoint) -> Position:
     for g in model.contact:
         g.restore_history({k: v[g.index] for k, v in checkpoint.pairs.items()}, model.nodal)
     problem.solver.commit()  # the state rollback returns to (the groups' history is set)
-    position = checkpoint.position
-    if position.ramp is not None and position.ramp.previous is not None:
-        increment, dw = position.ramp.previous
-        local = (increment, np.asarray(dw)[points].ravel())
-        position = Position(position.stage, RampState(position.ramp.step, local))
-    return position
+    c = checkpoint
+    if c.step is None:
+        return Position(c.stage, None)
+    previous = None
+    if c.load_increment is not None and c.dw is not None:
+        previous = (c.load_increment, c.dw[points].ravel())
+    return Position(c.stage, RampState(c.step, previous))
 
 
 def write_checkpoint(path: str | Path, checkpoint: Checkpoint, comm=MPI.COMM_WORLD) -> None:

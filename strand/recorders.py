@@ -69,6 +69,17 @@ class StepContext:
     _pairs: Any = field(default=None, repr=False)
     #: where the run stands in its programme (``programme.Position``), for checkpoints
     position: Any = None
+    _checkpoint: Any = field(default=None, repr=False)
+
+    @property
+    def checkpoint(self):
+        """The state at this step as a ``checkpoint.Checkpoint`` (captured once; collective)."""
+        if self._checkpoint is None:
+            from .checkpoint import capture
+
+            self._checkpoint = capture(self.problem, self.step.number, self.step.time,
+                                       self.position)  # fmt: skip
+        return self._checkpoint
 
     @property
     def pairs(self) -> dict:
@@ -405,21 +416,19 @@ class CheckpointRecorder:
     continue a stopped run; ``tensioned.h5``: the same at the last step before the cycle, the
     state other load cycles can start from."""
 
-    def __init__(self, folder: Path, problem):
+    def __init__(self, folder: Path):
         self.folder = Path(folder)
-        self.problem = problem
         self.seconds = 0.0
 
     def record(self, ctx: StepContext) -> None:
-        from .checkpoint import capture, write_checkpoint
+        from .checkpoint import write_checkpoint
 
         if ctx.position is None:
             return
         t0 = time.perf_counter()
-        state = capture(self.problem, ctx.step.number, ctx.step.time, ctx.position)
-        write_checkpoint(self.folder / "checkpoint.h5", state)
+        write_checkpoint(self.folder / "checkpoint.h5", ctx.checkpoint)
         if not ctx.cycle:
-            write_checkpoint(self.folder / "tensioned.h5", state)
+            write_checkpoint(self.folder / "tensioned.h5", ctx.checkpoint)
         self.seconds += time.perf_counter() - t0
 
     def close(self) -> None:

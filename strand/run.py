@@ -29,7 +29,7 @@ import numpy as np
 import strand  # noqa: F401
 
 from .case import Case  # isort: skip
-from .checkpoint import CheckpointError, capture, read_checkpoint, restore  # isort: skip
+from .checkpoint import CheckpointError, read_checkpoint, restore  # isort: skip
 from .folder import RUN_MARKER, FolderError, prepare_results_folder  # isort: skip
 from .parallel import is_root, on_root, root_stream  # isort: skip
 from .geometry import LINE, build_geometry  # isort: skip
@@ -429,7 +429,7 @@ def run_programme_with_outputs(
             WireSectionHistory(folder, problem.model, initial, su.direction, cycle),
         ]
     if case.output.checkpoint:
-        recorders.append(CheckpointRecorder(folder, problem))
+        recorders.append(CheckpointRecorder(folder))
     result.setup_seconds = time.perf_counter() - t_start
     progress = _Progress(
         programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3), "curvature": ("1/m", 1.0)},
@@ -448,14 +448,14 @@ def run_programme_with_outputs(
         for r in recorders:
             r.record(ctx)
         if keep is not None and keep(step):
-            result.kept = capture(problem, step.number, step.time, position)
+            result.kept = ctx.checkpoint
         output_seconds += time.perf_counter() - t_out
         return ctx
 
     def on_step(stage: Stage, rec: StepRecord, position: Position) -> None:
         value = problem.setup.get(stage.parameter)
         index = position.stage
-        number = (start.step.number if start else 0) + len(result.steps) + (0 if start else 1)
+        number = result.steps[-1].number + 1 if result.steps else 1  # after any start row
         step = RunStep(
             number, rec.stage, stage.parameter, value,
             programme.time(index, value), rec.iterations, rec.cuts, rec.seconds,

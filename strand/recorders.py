@@ -40,8 +40,8 @@ __all__ = [
 class RunStep:
     """One converged step of a run: its number (from 1), stage, the parameter it ramps and that
     parameter's value, the programme time (``LoadProgramme.time``), Newton's effort (iterations,
-    step cuts before it, wall time s, final residual norm N) and the set-up's measures
-    (``state``)."""
+    step cuts before it, wall time s, final residual norm N), the set-up's measures (``state``)
+    and the iterations of the failed attempts before it."""
 
     number: int
     stage: str
@@ -53,6 +53,7 @@ class RunStep:
     seconds: float
     residual: float
     state: Any
+    failed_iterations: int = 0
 
 
 @dataclass
@@ -130,15 +131,15 @@ class StepTable(_CsvFile):
     def __init__(self, folder: Path, state_type):
         super().__init__(
             Path(folder) / "steps.csv",
-            ["step", "stage", "time", *columns(state_type), "iterations", "cuts", "seconds",
-             "residual_N"],
+            ["step", "stage", "time", *columns(state_type), "iterations", "cuts",
+             "failed_iterations", "seconds", "residual_N"],
         )  # fmt: skip
 
     def record(self, ctx: StepContext) -> None:
         s = ctx.step
         self.writer.writerow(
             [s.number, s.stage, f"{s.time:.12g}", *values(s.state), s.iterations, s.cuts,
-             s.seconds, s.residual]
+             s.failed_iterations, s.seconds, s.residual]
         )  # fmt: skip
         self.file.flush()
 

@@ -460,6 +460,7 @@ def run_programme_with_outputs(
             number, rec.stage, stage.parameter, value,
             programme.time(index, value), rec.iterations, rec.cuts, rec.seconds,
             rec.residuals[-1] if rec.residuals else 0.0, problem.setup.state(),
+            rec.failed_iterations,
         )  # fmt: skip
         ctx = record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
@@ -549,11 +550,13 @@ def run_fatigue_report(case: Case, result: RunResult, recording: float, stream):
 def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
     """The closing summary: effort, key results, and the tension stage against the fibre model."""
     its = result.iterations
+    failed = sum(s.failed_iterations for s in result.steps)
+    cuts = sum(s.cuts for s in result.steps)
     outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
     lines = [
-        f"{outcome}: {len(result.steps)} steps, {its} Newton "
-        f"iterations, {result.seconds:.0f} s ({result.seconds / max(its, 1):.2f} s per iteration, "
-        f"set-up {result.setup_seconds:.0f} s); results in {result.folder}",
+        f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in {cuts} "
+        f"failed attempts), {result.seconds:.0f} s ({result.seconds / max(its + failed, 1):.2f} s "
+        f"per iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}",
     ]
     t = result.tensioned
     tension_rows = [s for s in result.steps if s.parameter == "tension"]

@@ -476,6 +476,8 @@ class StepRecord:
     residuals: list[float]
     seconds: float
     cuts: int
+    #: Newton iterations spent in the attempts that failed before it (the cuts' cost)
+    failed_iterations: int = 0
 
 
 class LoadStepFailure(RuntimeError):
@@ -573,7 +575,7 @@ class LoadStepper:
         sign = 1.0 if end >= start else -1.0
         current = start
         step = min(self.step, self.max_step)
-        cuts = 0
+        cuts, failed = 0, 0  # step cuts and their Newton iterations since the last success
         w = self.solver.w.x.array
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
         if resume is not None:
@@ -594,12 +596,13 @@ class LoadStepper:
                 previous = (trial - current, w - start_w)
                 self.solver.commit()
                 rec = StepRecord(
-                    stage, trial, result.iterations, result.residuals, result.seconds, cuts
-                )
+                    stage, trial, result.iterations, result.residuals, result.seconds, cuts,
+                    failed,
+                )  # fmt: skip
                 current = trial
                 if result.iterations <= self.easy_iterations:
                     step = min(step * self.growth, self.max_step)
-                cuts = 0
+                cuts, failed = 0, 0
                 self.state = RampState(step, previous)
                 records.append(rec)
                 self.history.append(rec)
@@ -612,6 +615,7 @@ class LoadStepper:
                     continue  # not a failure: stop at the top of the loop
                 step /= 2
                 cuts += 1
+                failed += result.iterations
                 if step < self.min_step:
                     raise LoadStepFailure(
                         f"{stage}: no convergence from {current:.6g} towards {trial:.6g} "

@@ -103,9 +103,18 @@ def test_step_cutting_recovers_and_commits_only_converged_steps():
     case = cantilever(20, terms=[spring], options=NewtonOptions(max_it=8))
     M = np.pi * S["EI"]
     stepper = LoadStepper(case.solver, first_step=1.0, min_step=1e-3)
+    solves = []  # every Newton solve's outcome, the failed ones too
+    solve = case.solver.solve
+    case.solver.solve = lambda: solves.append(solve()) or solves[-1]
     records = stepper.ramp(lambda lam: setattr(case.moment, "value", [0, 0, lam * M]), 0.0, 1.0)
     assert records[-1].load == pytest.approx(1.0)
     assert sum(r.cuts for r in records) >= 1
+    # the failed attempts' iterations are charged to the step that follows them
+    assert (
+        sum(r.failed_iterations for r in records)
+        == sum(r.iterations for r in solves if not r.converged)
+        > 0
+    )
     assert spring.committed == len(records)
     assert spring.rollbacks == sum(r.cuts for r in records)
     assert case.tip_theta[2] == pytest.approx(np.pi, rel=1e-9)

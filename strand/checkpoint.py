@@ -76,23 +76,6 @@ def _block_points(model) -> npt.NDArray[np.int64]:
     return out
 
 
-def _pair_arrays(model) -> dict[str, np.ndarray]:
-    """Every contact group's ``history_arrays`` in the geometry's pair order, on every rank."""
-    local = [g.history_arrays() for g in model.contact]
-    shapes = {k: v.shape[1:] for arrays in local for k, v in arrays.items()}
-    if model.comm.size > 1:  # a rank may hold no pairs: the names and shapes from all
-        for other in model.comm.allgather(shapes):
-            shapes.update(other)
-    out = {k: np.zeros((len(model.geometry.pairs), *shape)) for k, shape in shapes.items()}
-    for g, arrays in zip(model.contact, local, strict=True):
-        for k, v in arrays.items():
-            out[k][g.index] = v
-    if model.comm.size > 1:  # each pair lives on one rank: the sums are exact
-        for v in out.values():
-            model.comm.Allreduce(MPI.IN_PLACE, v, op=MPI.SUM)
-    return out
-
-
 def capture(problem, number: int, time: float, position: Position) -> Checkpoint:
     """The problem's current (converged, committed) state. Collective."""
     model, setup = problem.model, problem.setup
@@ -104,7 +87,7 @@ def capture(problem, number: int, time: float, position: Position) -> Checkpoint
         number, time, {p: setup.get(p) for p in setup.parameters}, position.stage,
         None if ramp is None else ramp.step,
         None if ramp is None or ramp.previous is None else ramp.previous[0],
-        model.node_values(), dw, _pair_arrays(model),
+        model.node_values(), dw, model.gather_pairs([g.history_arrays() for g in model.contact]),
     )  # fmt: skip
 
 

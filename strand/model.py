@@ -31,6 +31,9 @@ __all__ = ["StrandModel", "layer_section", "strand_stencils"]
 
 Array = npt.NDArray[np.float64]
 
+#: the (P, 3) arrays of ``StrandModel.pair_results``
+PAIR_VECTORS = ("friction", "normal", "slip", "sliding")
+
 
 def layer_section(cmesh: CableMesh) -> CircularSection:
     """Circular sections with the diameter and elastic constants of each cell's layer (DG0)."""
@@ -150,28 +153,41 @@ class StrandModel:
         offsets = self.geometry.wire_offsets
         return np.arange(offsets[0], offsets[1])
 
+    def gather_pairs(
+        self, per_group: list[dict[str, np.ndarray]], shapes: dict[str, tuple] | None = None
+    ) -> dict[str, Array]:
+        """Per-pair arrays of the contact groups (a dict per group in ``contact``, first axis
+        its pairs) in the geometry's pair order, on every rank. ``shapes``: each array's shape
+        beyond the pair axis (default: from the groups of every rank; a rank may hold none)."""
+        if shapes is None:
+            shapes = {k: v.shape[1:] for arrays in per_group for k, v in arrays.items()}
+            if self.comm.size > 1:
+                for other in self.comm.allgather(shapes):
+                    shapes.update(other)
+        n = len(self.geometry.pairs)
+        out = {k: np.zeros((n, *shapes[k])) for k in sorted(shapes)}  # one order on every rank
+        for g, arrays in zip(self.contact, per_group, strict=True):
+            for k, v in arrays.items():
+                out[k][g.index] = v
+        if self.comm.size > 1:  # each pair lives on one rank: the sums are exact
+            for value in out.values():
+                self.comm.Allreduce(MPI.IN_PLACE, value, op=MPI.SUM)
+        return out
+
     def pair_results(self) -> dict[str, Array]:
         """Per geometry pair: gap (m), normal force (N), traction magnitude (N), slipping flag,
         and the vectors (P, 3) of the friction force ``friction`` (N, on a), the normal a → b
         ``normal``, and the friction history since t = 0 (``FrictionHistory``): ``slip`` and
         ``sliding`` (m), with the dissipated energy ``work`` (J)."""
-        n = len(self.geometry.pairs)
-        out = {k: np.zeros(n) for k in ("gap", "force", "traction", "work", "slipping")}
-        for k in ("friction", "normal", "slip", "sliding"):
-            out[k] = np.zeros((n, 3))
+        per_group = []
         for g in self.contact:
             s, h = g.state, g.history
-            out["gap"][g.index] = s.gap
-            out["force"][g.index] = s.force
-            out["traction"][g.index] = np.linalg.norm(s.traction, axis=1)
-            out["slipping"][g.index] = s.slipping
-            out["friction"][g.index] = s.traction
-            out["normal"][g.index] = s.normal
-            out["slip"][g.index] = h.slip
-            out["sliding"][g.index] = h.sliding
-            out["work"][g.index] = h.work
-        if self.comm.size > 1:  # each pair lives on one rank: the sums are exact
-            for value in out.values():
-                self.comm.Allreduce(MPI.IN_PLACE, value, op=MPI.SUM)
+            per_group.append({
+                "gap": s.gap, "force": s.force, "traction": np.linalg.norm(s.traction, axis=1),
+                "work": h.work, "slipping": s.slipping.astype(float), "friction": s.traction,
+                "normal": s.normal, "slip": h.slip, "sliding": h.sliding,
+            })  # fmt: skip
+        shapes = {k: () for k in ("gap", "force", "traction", "work", "slipping")}
+        out = self.gather_pairs(per_group, shapes | dict.fromkeys(PAIR_VECTORS, (3,)))
         out["slipping"] = out["slipping"] > 0.5
         return out

@@ -42,6 +42,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     growth = 1.5
     cuts = 6                  # halvings allowed before a step is declared failed
     max_iterations = 12       # Newton iterations per attempt
+    stall = true              # cut an attempt whose residual has not halved in two iterations
+                              # (from the 4th on): it would not converge (false: run to the limit)
     tolerance = 1e-2          # N, absolute residual tolerance (2.5e-7 of the tension)
 
     [output]
@@ -129,6 +131,7 @@ class StepSettings:
     growth: float = 1.5
     cuts: int = 6
     max_iterations: int = 12
+    stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
     tolerance: float = 1e-2  # N
 
 

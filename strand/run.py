@@ -331,7 +331,11 @@ def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme
     """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
     one line about it on ``stream``."""
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
-    options = NewtonOptions(atol=case.steps.tolerance, max_it=case.steps.max_iterations)
+    options = NewtonOptions(
+        atol=case.steps.tolerance,
+        max_it=case.steps.max_iterations,
+        stall_after=NewtonOptions.stall_after if case.steps.stall else 0,
+    )
     setup, programme = setup_and_programme(case)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
     size = problem.model.comm.size

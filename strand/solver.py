@@ -118,6 +118,15 @@ class NewtonOptions:
     #: must be cut, not accepted.
     floor_factor: float = 100.0
     max_it: int = 25
+    #: stall test: from iteration ``stall_after`` on, a solve whose residual has not fallen
+    #: below ``stall_factor`` × the residual two iterations earlier (and is not yet within
+    #: ``floor_factor`` of the tolerance) is stopped as failed, so that its step is cut at
+    #: once. In its quadratic basin Newton gains orders of magnitude per iteration; a solve
+    #: that has not halved its residual in two iterations is cycling between contact states
+    #: or diverging (Cardinal, tension + first leg: all 13 such solves ran on to ``max_it``
+    #: without converging, and no converged solve was ever that slow). 0 switches it off.
+    stall_after: int = 4
+    stall_factor: float = 0.5
     linesearch: str = "basic"
     petsc: dict = field(
         default_factory=dict
@@ -234,8 +243,10 @@ class NewtonSolver:
         self.snes.setFunction(self._residual, self.b)
         self.snes.setJacobian(self._jacobian, self.A, self.A)
         self.snes.setMonitor(self._monitor)
+        self.snes.setConvergenceTest(self._converged)
         self.snes.setFromOptions()
         self._residuals: list[float] = []
+        self._stalled = False
         self._cache: tuple[np.ndarray, list] | None = None
         self._masks: list | None = None
         self._saved = w.x.array.copy()
@@ -343,6 +354,35 @@ class NewtonSolver:
         self.timings["insert"] += t3 - t2
         self.timings["jacobian"] += t3 - t0
 
+    def _converged(self, snes, its: int, norms: tuple[float, float, float]) -> int:
+        """PETSc's default test (``SNESConvergedDefault``: ``atol``, ``rtol`` against the first
+        residual, ``stol``, ``max_it``) and then the stall test (``NewtonOptions.stall_after``).
+        ``norms`` are those of the iterate, of the last Newton correction and of the residual;
+        the monitor has just appended the residual to ``self._residuals``."""
+        xnorm, snorm, fnorm = norms
+        o = self.options
+        reason = PETSc.SNES.ConvergedReason
+        if not np.isfinite(fnorm):
+            return reason.DIVERGED_FUNCTION_NANORINF
+        if fnorm < o.atol:
+            return reason.CONVERGED_FNORM_ABS
+        if its > 0:
+            r = self._residuals
+            if fnorm <= o.rtol * r[0]:
+                return reason.CONVERGED_FNORM_RELATIVE
+            if snorm < o.stol * xnorm:
+                return reason.CONVERGED_SNORM_RELATIVE
+            if (
+                0 < o.stall_after <= its
+                and fnorm > o.stall_factor * r[its - 2]
+                and fnorm > o.floor_factor * max(o.atol, o.rtol * r[0])
+            ):
+                self._stalled = True
+                return reason.DIVERGED_DTOL
+        if its >= o.max_it:
+            return reason.DIVERGED_MAX_IT
+        return reason.CONVERGED_ITERATING
+
     def _monitor(self, snes, its, norm):
         self._residuals.append(float(norm))
         if self.monitor is not None:
@@ -352,6 +392,7 @@ class NewtonSolver:
     def solve(self) -> NewtonResult:
         """Run Newton from the current ``w``. On failure ``w`` holds the last iterate."""
         self._residuals = []
+        self._stalled = False
         self._cache = None
         t0 = time.perf_counter()
         fem_petsc.assign(self.w, self.x)
@@ -369,7 +410,7 @@ class NewtonSolver:
         return NewtonResult(
             converged,
             self.snes.getIterationNumber(),
-            _REASONS.get(reason, str(reason)),
+            "DIVERGED_STALLED" if self._stalled else _REASONS.get(reason, str(reason)),
             list(self._residuals),
             dt,
         )

@@ -146,6 +146,57 @@ def test_newton_converges_quadratically_on_tip_force():
     assert order > 1.8, result.residuals
 
 
+class MisjudgedSpring(AxialSpring):
+    """``AxialSpring`` whose tangent claims ``scale`` × its stiffness: Newton then converges only
+    linearly, removing a fraction 1/scale of the spring's error per iteration."""
+
+    def __init__(self, pairs, k, scale):
+        super().__init__(pairs, k)
+        self.scale = scale
+
+    def evaluate(self, w, jacobian):
+        f, K = super().evaluate(w, jacobian)
+        return f, self.scale * K
+
+
+def spring_to_ground(scale, options):
+    """A bar tip pulled against a stiff spring to its clamped twin; the spring's tangent is off
+    by ``scale``. Returns the solver."""
+    mesh, V, roots, tips = two_bars()
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
+    bc = fem.dirichletbc(np.zeros(6), roots, V)
+    terms = [
+        MisjudgedSpring([[tips[0], roots[1]]], 1e10, scale),
+        NodalLoad([tips[0]], [[1e3, 0, 0, 0, 0, 0]], 1.0),
+    ]
+    return NewtonSolver(beam.residual(), w, [bc], terms=terms, options=options)
+
+
+def test_stall_test_stops_a_stagnating_solve_early():
+    """A tangent 10× too stiff makes the residual fall by only 0.9 per iteration: without the
+    stall test the solve runs to max_it; with it, it stops at ``stall_after`` iterations as
+    DIVERGED_STALLED, with the same residuals up to there."""
+    off = spring_to_ground(10.0, NewtonOptions(max_it=20, stall_after=0)).solve()
+    on = spring_to_ground(10.0, NewtonOptions(max_it=20, stall_after=4)).solve()
+    assert not off.converged and off.iterations == 20 and off.reason == "DIVERGED_MAX_IT"
+    assert not on.converged and on.iterations == 4 and on.reason == "DIVERGED_STALLED"
+    assert on.residuals == off.residuals[:5]
+    assert on.residuals[4] > 0.5 * on.residuals[2]
+
+
+def test_stall_test_leaves_converging_solves_alone():
+    """Exact (scale 1) and halving (scale 2: the residual falls by 1/2 per iteration, 1/4 per
+    two) solves take the same iterations and residuals with and without the stall test."""
+    for scale in (1.0, 2.0):
+        runs = [
+            spring_to_ground(scale, NewtonOptions(max_it=60, stall_after=n)).solve() for n in (0, 4)
+        ]
+        assert all(r.converged for r in runs)
+        assert runs[0].residuals == runs[1].residuals
+    assert runs[0].iterations > 4  # the halving solve does pass through the stall test
+
+
 def test_nodal_load_validates_shapes():
     with pytest.raises(ValueError, match="one 6-vector"):
         NodalLoad([0, 1], [[1, 0, 0, 0, 0, 0]])

@@ -45,6 +45,9 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     stall = true              # cut an attempt whose residual has not halved in two iterations
                               # (from the 4th on): it would not converge (false: run to the limit)
     tolerance = 1e-2          # N, absolute residual tolerance (2.5e-7 of the tension)
+    balance = 1e-4            # or converged when no node is out of balance by more than this
+                              # fraction of the mean wire tension T/n (66 mN here), nor by that
+                              # force × the largest wire diameter in moment; 0: off
 
     [output]
     folder = "results/cardinal"    # default for a case file: results/<file name without .toml>
@@ -133,6 +136,7 @@ class StepSettings:
     max_iterations: int = 12
     stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
     tolerance: float = 1e-2  # N
+    balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
 
 
 @dataclass(frozen=True)
@@ -195,7 +199,8 @@ SECTIONS = {
 }
 
 #: settings that may be zero or negative (all other numbers must be positive)
-_SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2")}
+_SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2"),
+           ("steps", "balance")}  # fmt: skip
 
 
 def _value(section: str, key: str, value, default):
@@ -220,6 +225,8 @@ def _value(section: str, key: str, value, default):
             )
         if (section, key) not in _SIGNED and not value > 0:
             raise CaseError(f"{where}: expected a positive number")
+        if (section, key) == ("steps", "balance") and value < 0:
+            raise CaseError(f"{where}: expected a positive fraction, or 0 to leave the test out")
         return type(default)(value)
     if isinstance(default, tuple):
         if not isinstance(value, list) or not all(

@@ -327,15 +327,23 @@ def _results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
     return on_root(prepare)
 
 
+def newton_options(case: Case) -> NewtonOptions:
+    """Newton's settings from ``[steps]``: the residual tolerance, and the balance test against
+    the mean wire tension (forces) and that force on the largest wire diameter (moments)."""
+    s = case.steps
+    force = s.balance * case.load.tension / case.cable.n_wires
+    diameter = max(layer.wire.diameter for layer in case.cable.layers)
+    return NewtonOptions(
+        atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
+        stall_after=NewtonOptions.stall_after if s.stall else 0,
+    )  # fmt: skip
+
+
 def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme]:
     """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
     one line about it on ``stream``."""
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
-    options = NewtonOptions(
-        atol=case.steps.tolerance,
-        max_it=case.steps.max_iterations,
-        stall_after=NewtonOptions.stall_after if case.steps.stall else 0,
-    )
+    options = newton_options(case)
     setup, programme = setup_and_programme(case)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
     size = problem.model.comm.size

@@ -127,6 +127,11 @@ class NewtonOptions:
     #: without converging, and no converged solve was ever that slow). 0 switches it off.
     stall_after: int = 4
     stall_factor: float = 0.5
+    #: convergence in physical terms: from the first iteration on, a solve also ends when no
+    #: node is out of balance by more than ``force_tol`` (N) in force and ``moment_tol`` (N m)
+    #: in moment (largest nodal residual, all ranks); 0 leaves this test out
+    force_tol: float = 0.0
+    moment_tol: float = 0.0
     linesearch: str = "basic"
     petsc: dict = field(
         default_factory=dict
@@ -364,7 +369,7 @@ class NewtonSolver:
         reason = PETSc.SNES.ConvergedReason
         if not np.isfinite(fnorm):
             return reason.DIVERGED_FUNCTION_NANORINF
-        if fnorm < o.atol:
+        if fnorm < o.atol or (its > 0 and o.force_tol > 0 and self._in_balance()):
             return reason.CONVERGED_FNORM_ABS
         if its > 0:
             r = self._residuals
@@ -382,6 +387,17 @@ class NewtonSolver:
         if its >= o.max_it:
             return reason.DIVERGED_MAX_IT
         return reason.CONVERGED_ITERATING
+
+    def _in_balance(self) -> bool:
+        """Whether every node's out-of-balance force and moment (the residual; at Dirichlet dofs
+        it is the distance to the prescribed value, zero after the first iteration) are within
+        ``force_tol`` and ``moment_tol``; collective."""
+        r = np.abs(self.b.array_r.reshape(-1, 6))
+        worst = np.array([r[:, :3].max(initial=0.0), r[:, 3:].max(initial=0.0)])
+        comm = self.V.mesh.comm
+        if comm.size > 1:
+            comm.Allreduce(MPI.IN_PLACE, worst, op=MPI.MAX)
+        return bool(worst[0] <= self.options.force_tol and worst[1] <= self.options.moment_tol)
 
     def _monitor(self, snes, its, norm):
         self._residuals.append(float(norm))

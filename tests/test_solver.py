@@ -1,5 +1,7 @@
 """Newton solver machinery: pair terms outside UFL, nodal loads, step cutting, history rollback."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from dolfinx import fem
@@ -195,6 +197,22 @@ def test_stall_test_leaves_converging_solves_alone():
         assert all(r.converged for r in runs)
         assert runs[0].residuals == runs[1].residuals
     assert runs[0].iterations > 4  # the halving solve does pass through the stall test
+
+
+def test_balance_test_ends_a_solve_once_every_node_is_in_balance():
+    """With ``force_tol`` (N) and ``moment_tol`` (N m), a solve ends at the first iterate whose
+    largest nodal force and moment residuals are within them, before the 2-norm test would; a
+    force tolerance out of reach leaves the solve as it was."""
+    tight = NewtonOptions(atol=1e-9, rtol=1e-14, max_it=60)
+    exact = spring_to_ground(2.0, tight).solve()
+    solver = spring_to_ground(2.0, replace(tight, force_tol=1e-3, moment_tol=1e-3))
+    balanced = solver.solve()
+    worst = np.abs(solver.b.array_r).reshape(-1, 6).max(axis=0)
+    assert balanced.converged and balanced.iterations < exact.iterations
+    assert worst[:3].max() <= 1e-3 and worst[3:].max() <= 1e-3
+    assert balanced.residuals == exact.residuals[: balanced.iterations + 1]
+    unreachable = spring_to_ground(2.0, replace(tight, force_tol=1e-300, moment_tol=1e-3))
+    assert unreachable.solve().residuals == exact.residuals
 
 
 def test_nodal_load_validates_shapes():

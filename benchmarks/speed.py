@@ -1,0 +1,146 @@
+"""The default case with yesterday's solver settings beside today's, measured in one run.
+
+Run: .venv/bin/python benchmarks/speed.py [--quick] [variant …]   (--quick: 0.15 m to ±1 kN)
+
+Every variant runs the whole default case (Cardinal, 1 m, 40 kN, saddle cycle to ±4.3 kN, every
+output) in a process of its own, one after the other, so that each has the machine and its own
+peak memory. Prints per variant: wall time, converged steps, Newton iterations in converged steps
+and in failed attempts, LU factorisations, time per LU, time in outputs, peak memory; then each
+variant's results against the first's at the programme's turning points (end of tension, the two
+peaks, the two returns to zero): the largest difference in midspan deflection and in end
+displacement (µm), and in the axial force of any element relative to the largest (fields.h5).
+The issue's bar for "same results": 0.1 µm and 1e-4.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+ROOT = Path("results/benchmark_speed")
+QUICK = ["mesh.length=0.15", "load.lateral=1000"]  # a smoke test of the benchmark itself
+
+#: name: (case settings, extra environment)
+VARIANTS = {
+    "before": (["steps.stall=false", "steps.balance=0"], {}),
+    "stall test": (["steps.balance=0"], {}),
+    "stall + balance (default)": ([], {}),
+    "default + 2 BLAS threads": ([], {"OPENBLAS_NUM_THREADS": "2"}),
+}
+
+
+def slug(name: str) -> str:
+    return "".join(c if c.isalnum() else "_" for c in name).strip("_")
+
+
+def run_variant(name: str, quick: bool) -> dict:
+    """Run one variant in this process; returns its measurements."""
+    from petsc4py import PETSc
+
+    from strand.case import load_case
+    from strand.run import run_case
+
+    PETSc.Log.begin()
+    settings, _ = VARIANTS[name]
+    case = load_case(None, [*settings, *(QUICK if quick else [])])
+    t0 = time.perf_counter()
+    with open(os.devnull, "w") as sink:
+        result = run_case(case, ROOT / slug(name), stream=sink, overwrite=True)
+    seconds = time.perf_counter() - t0
+    lu = PETSc.Log.Event("MatLUFactorNum").getPerfInfo()
+    return {
+        "seconds": seconds,
+        "steps": len(result.steps),
+        "iterations": result.iterations,
+        "failed_iterations": sum(s.failed_iterations for s in result.steps),
+        "cuts": sum(s.cuts for s in result.steps),
+        "lu": lu["count"],
+        "lu_seconds": lu["time"],
+        "output_seconds": result.timings["output"],
+        "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "failure": result.failure,
+    }
+
+
+def turning_points(folder: Path) -> dict[float, dict]:
+    """Deflection, end displacement (m) and element axial forces (N) at the programme's whole
+    times (ends of stages), from steps.csv and fields.h5."""
+    steps = np.genfromtxt(folder / "steps.csv", delimiter=",", names=True, dtype=None,
+                          encoding="utf-8")  # fmt: skip
+    out = {}
+    with h5py.File(folder / "fields.h5") as f:
+        forces = f["Function/axial_force"]
+        times = {float(k.replace("_", ".")): k for k in forces}
+        for t, key in times.items():
+            if abs(t - round(t)) > 1e-9:
+                continue
+            row = steps[np.isclose(steps["time"], t)][0]
+            out[round(t)] = {
+                "deflection": float(row["deflection_m"]),
+                "end": float(row["end_displacement_m"]),
+                "N": forces[key][:, 0],
+            }
+    return out
+
+
+def main(names: list[str], quick: bool) -> None:
+    rows = {}
+    for name in names:
+        env = {**os.environ, **VARIANTS[name][1]}
+        print(f"running: {name} …", file=sys.stderr, flush=True)
+        done = subprocess.run(
+            [sys.executable, __file__, *(["--quick"] if quick else []), "--one", name],
+            env=env,
+            capture_output=True,
+            text=True,
+        )
+        if done.returncode != 0:
+            print(done.stderr[-2000:], file=sys.stderr)
+            raise SystemExit(f"{name}: failed (exit code {done.returncode})")
+        rows[name] = json.loads(done.stdout.strip().splitlines()[-1])
+    head = (f"{'variant':30s} {'time (s)':>8s} {'steps':>5s} {'its':>5s} {'+failed':>7s} "
+            f"{'LUs':>5s} {'s/LU':>5s} {'s/it':>5s} {'output s':>8s} {'peak MiB':>8s}")  # fmt: skip
+    print(head)
+    for name, r in rows.items():
+        its = r["iterations"] + r["failed_iterations"]
+        print(f"{name:30s} {r['seconds']:8.0f} {r['steps']:5d} {r['iterations']:5d} "
+              f"{r['failed_iterations']:7d} {r['lu']:5d} {r['lu_seconds'] / r['lu']:5.2f} "
+              f"{r['seconds'] / its:5.2f} {r['output_seconds']:8.0f} {r['peak_mib']:8.0f}"
+              + (f"  FAILED: {r['failure']}" if r["failure"] else ""))  # fmt: skip
+    reference = names[0]
+    ref = turning_points(ROOT / slug(reference))
+    print(f"\nresults against '{reference}' at the ends of the programme's stages (t = "
+          f"{', '.join(str(t) for t in ref)}):")  # fmt: skip
+    print(f"{'variant':30s} {'deflection (µm)':>15s} {'end (µm)':>9s} {'axial force':>12s}")
+    for name in names[1:]:
+        other = turning_points(ROOT / slug(name))
+        d = max(abs(other[t]["deflection"] - ref[t]["deflection"]) for t in ref)
+        e = max(abs(other[t]["end"] - ref[t]["end"]) for t in ref)
+        n = max(np.abs(other[t]["N"] - ref[t]["N"]).max() / np.abs(ref[t]["N"]).max() for t in ref)
+        print(f"{name:30s} {1e6 * d:15.4f} {1e6 * e:9.4f} {n:12.1e}")
+
+
+if __name__ == "__main__":
+    from strand.parallel import serial_only
+
+    serial_only("this benchmark")
+    args = sys.argv[1:]
+    quick = "--quick" in args
+    args = [a for a in args if a != "--quick"]
+    unknown = [a for a in args if a not in VARIANTS and a != "--one"]
+    if unknown:
+        raise SystemExit(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
+    if args[:1] == ["--one"]:
+        print(json.dumps(run_variant(args[1], quick)))
+    else:
+        main(args or list(VARIANTS), quick)

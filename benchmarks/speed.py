@@ -5,10 +5,11 @@ Run: .venv/bin/python benchmarks/speed.py [--quick] [variant …]   (--quick: 0.
 Every variant runs the whole default case (Cardinal, 1 m, 40 kN, saddle cycle to ±4.3 kN, every
 output) in a process of its own, one after the other, so that each has the machine and its own
 peak memory. Prints per variant: wall time, converged steps, Newton iterations in converged steps
-and in failed attempts, LU factorisations, time per LU, time in outputs, peak memory; then each
-variant's results against the first's at the programme's turning points (end of tension, the two
-peaks, the two returns to zero): the largest difference in midspan deflection and in end
-displacement (µm), and in the axial force of any element relative to the largest (fields.h5).
+and in failed attempts, LU factorisations, time per LU, time in outputs, peak memory (of the
+largest rank), and the outputs' time by recorder; then each variant's results against the
+first's at the programme's turning points (end of tension, the two peaks, the two returns to
+zero): the largest difference in midspan deflection and in end displacement (µm), and in the
+axial force of any element relative to the largest (axial_forces.csv).
 The issue's bar for "same results": 0.1 µm and 1e-4.
 """
 
@@ -24,18 +25,18 @@ import sys
 import time
 from pathlib import Path
 
-import h5py
 import numpy as np
 
 ROOT = Path("results/benchmark_speed")
 QUICK = ["mesh.length=0.15", "load.lateral=1000"]  # a smoke test of the benchmark itself
 
-#: name: (case settings, extra environment)
+#: name: (case settings, extra environment, MPI ranks)
 VARIANTS = {
-    "before": (["steps.stall=false", "steps.balance=0"], {}),
-    "stall test": (["steps.balance=0"], {}),
-    "stall + balance (default)": ([], {}),
-    "default + 2 BLAS threads": ([], {"OPENBLAS_NUM_THREADS": "2"}),
+    "before": (["steps.stall=false", "steps.balance=0"], {}, 1),
+    "stall test": (["steps.balance=0"], {}, 1),
+    "stall + balance (default)": ([], {}, 1),
+    "default + 2 BLAS threads": ([], {"OPENBLAS_NUM_THREADS": "2"}, 1),
+    "default on 2 ranks": ([], {}, 2),
 }
 
 
@@ -51,7 +52,7 @@ def run_variant(name: str, quick: bool) -> dict:
     from strand.run import run_case
 
     PETSc.Log.begin()
-    settings, _ = VARIANTS[name]
+    settings = VARIANTS[name][0]
     case = load_case(None, [*settings, *(QUICK if quick else [])])
     t0 = time.perf_counter()
     with open(os.devnull, "w") as sink:
@@ -67,30 +68,39 @@ def run_variant(name: str, quick: bool) -> dict:
         "lu": lu["count"],
         "lu_seconds": lu["time"],
         "output_seconds": result.timings["output"],
+        "output_by": result.output_timings,
         "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
         "failure": result.failure,
     }
 
 
-def turning_points(folder: Path) -> dict[float, dict]:
-    """Deflection, end displacement (m) and element axial forces (N) at the programme's whole
-    times (ends of stages), from steps.csv and fields.h5."""
-    steps = np.genfromtxt(folder / "steps.csv", delimiter=",", names=True, dtype=None,
-                          encoding="utf-8")  # fmt: skip
-    out = {}
-    with h5py.File(folder / "fields.h5") as f:
-        forces = f["Function/axial_force"]
-        times = {float(k.replace("_", ".")): k for k in forces}
-        for t, key in times.items():
-            if abs(t - round(t)) > 1e-9:
-                continue
-            row = steps[np.isclose(steps["time"], t)][0]
-            out[round(t)] = {
-                "deflection": float(row["deflection_m"]),
-                "end": float(row["end_displacement_m"]),
-                "N": forces[key][:, 0],
-            }
-    return out
+def turning_points(folder: Path) -> dict[int, dict]:
+    """Deflection, end displacement (m) and element axial forces (N, the geometry's element
+    order) at the programme's whole times (ends of stages), from steps.csv and axial_forces.csv
+    (which every rank count writes alike)."""
+    steps = np.genfromtxt(folder / "steps.csv", delimiter=",", names=True)
+    whole = np.isclose(steps["time"], np.round(steps["time"]), rtol=0, atol=1e-9)
+    out = {
+        int(step): {"time": round(t), "deflection": d, "end": e, "N": {}}
+        for step, t, d, e in zip(
+            steps["step"][whole],
+            steps["time"][whole],
+            steps["deflection_m"][whole],
+            steps["end_displacement_m"][whole],
+            strict=True,
+        )  # fmt: skip
+    }
+    with open(folder / "axial_forces.csv") as f:
+        next(f)
+        for line in f:
+            step = int(line[: line.index(",")])
+            if step in out:
+                cols = line.split(",")
+                out[step]["N"][int(cols[2])] = float(cols[7])
+    return {
+        row["time"]: dict(row, N=np.array([row["N"][i] for i in sorted(row["N"])]))
+        for row in out.values()
+    }
 
 
 def main(names: list[str], quick: bool) -> None:
@@ -117,6 +127,9 @@ def main(names: list[str], quick: bool) -> None:
               f"{r['failed_iterations']:7d} {r['lu']:5d} {r['lu_seconds'] / r['lu']:5.2f} "
               f"{r['seconds'] / its:5.2f} {r['output_seconds']:8.0f} {r['peak_mib']:8.0f}"
               + (f"  FAILED: {r['failure']}" if r["failure"] else ""))  # fmt: skip
+    for name, r in rows.items():
+        by = sorted(r["output_by"].items(), key=lambda kv: -kv[1])
+        print(f"outputs of '{name}' (s): " + ", ".join(f"{k} {v:.0f}" for k, v in by))
     reference = names[0]
     ref = turning_points(ROOT / slug(reference))
     print(f"\nresults against '{reference}' at the ends of the programme's stages (t = "
@@ -133,7 +146,8 @@ def main(names: list[str], quick: bool) -> None:
 if __name__ == "__main__":
     from strand.parallel import serial_only
 
-    serial_only("this benchmark")
+    if "--one" not in sys.argv:
+        serial_only("this benchmark (it launches its 2-rank variant itself)")
     args = sys.argv[1:]
     quick = "--quick" in args
     args = [a for a in args if a != "--quick"]
@@ -141,6 +155,11 @@ if __name__ == "__main__":
     if unknown:
         raise SystemExit(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
     if args[:1] == ["--one"]:
-        print(json.dumps(run_variant(args[1], quick)))
+        from mpi4py import MPI
+
+        measured = run_variant(args[1], quick)
+        peaks = MPI.COMM_WORLD.gather(measured["peak_mib"])
+        if MPI.COMM_WORLD.rank == 0:
+            print(json.dumps(dict(measured, peak_mib=max(peaks))))
     else:
         main(args or list(VARIANTS), quick)

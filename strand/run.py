@@ -87,8 +87,12 @@ class RunResult:
     warnings: list[str] = field(default_factory=list)  # e.g. beyond small sliding
     seconds: float = 0.0
     setup_seconds: float = 0.0
-    #: solver wall times (s): residual/jacobian callbacks, pair terms, insertion, whole solves
+    #: solver wall times (s): residual/jacobian callbacks, pair terms, insertion, whole solves;
+    #: and "output", all recorders together
     timings: dict = field(default_factory=dict)
+    #: wall time (s) of each recorder over the run, by class name (the first to ask for the
+    #: step's cell results, the axial force table, is charged with evaluating them)
+    output_timings: dict = field(default_factory=dict)
     cycle_parameter: str = "lateral"
     #: the state kept in memory at the steps ``run_programme_with_outputs(keep=)`` chose
     kept: object | None = None
@@ -458,7 +462,12 @@ def run_programme_with_outputs(
             _evaluate=lambda: cell_results(problem.model, problem.setup.direction, evaluator),
         )  # fmt: skip
         for r in recorders:
+            t_r = time.perf_counter()
             r.record(ctx)
+            name = type(r).__name__
+            result.output_timings[name] = (
+                result.output_timings.get(name, 0.0) + time.perf_counter() - t_r
+            )
         if keep is not None and keep(step):
             result.kept = ctx.checkpoint
         output_seconds += time.perf_counter() - t_out

@@ -123,8 +123,10 @@ class NewtonOptions:
     #: ``floor_factor`` of the tolerance) is stopped as failed, so that its step is cut at
     #: once. In its quadratic basin Newton gains orders of magnitude per iteration; a solve
     #: that has not halved its residual in two iterations is cycling between contact states
-    #: or diverging (Cardinal, tension + first leg: all 13 such solves ran on to ``max_it``
-    #: without converging, and no converged solve was ever that slow). 0 switches it off.
+    #: or diverging. In the default Cardinal case all such solves but one ran on to ``max_it``
+    #: without converging; the one (leg 3, 8 iterations) recovered by chance after three
+    #: iterations without progress, and cutting it moves the results by a change of load
+    #: path (docs/theory.md §6). 0 switches it off.
     stall_after: int = 4
     stall_factor: float = 0.5
     #: convergence in physical terms: from the first iteration on, a solve also ends when no

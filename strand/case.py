@@ -199,8 +199,9 @@ SECTIONS = {
 }
 
 #: settings that may be zero or negative (all other numbers must be positive)
-_SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2"),
-           ("steps", "balance")}  # fmt: skip
+_SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2")}
+#: settings for which 0 means "off" (they must not be negative)
+_ZERO_IS_OFF = {("steps", "balance")}
 
 
 def _value(section: str, key: str, value, default):
@@ -223,10 +224,11 @@ def _value(section: str, key: str, value, default):
                 f"{where}: expected a positive tension; a compressed strand is outside the "
                 "model (its wires buckle and its contact pairs open)"
             )
-        if (section, key) not in _SIGNED and not value > 0:
+        if (section, key) in _ZERO_IS_OFF:
+            if value < 0:
+                raise CaseError(f"{where}: expected a positive number, or 0 for off")
+        elif (section, key) not in _SIGNED and not value > 0:
             raise CaseError(f"{where}: expected a positive number")
-        if (section, key) == ("steps", "balance") and value < 0:
-            raise CaseError(f"{where}: expected a positive fraction, or 0 to leave the test out")
         return type(default)(value)
     if isinstance(default, tuple):
         if not isinstance(value, list) or not all(

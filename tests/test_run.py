@@ -76,7 +76,10 @@ def test_a_case_file_writes_to_results_named_after_it(tmp_path):
         ("[steps]\nmax_iterations = 2.5\n", "expected a whole number"),
         ("[steps]\nlateral = 500.0\n", "exceeds lateral_max"),
         ("[steps]\ntolerance = -1\n", r"\[steps\] tolerance = -1: expected a positive number"),
-        ("[steps]\nbalance = -1e-4\n", r"balance = -0.0001: expected a positive fraction, or 0"),
+        (
+            "[steps]\nbalance = -1e-4\n",
+            r"balance = -0.0001: expected a positive number, or 0 for off",
+        ),
         ("[steps]\nstall = 1\n", r"\[steps\] stall = 1: expected true or false"),
         ("[output]\nplots = 1\n", "expected true or false"),
         ("[solver]\natol = 1\n", r"unknown setting\(s\) \['solver'\]"),

@@ -108,14 +108,13 @@ def turning_points(folder: Path) -> dict[int, dict]:
 def main(names: list[str], quick: bool) -> None:
     rows = {}
     for name in names:
-        env = {**os.environ, **VARIANTS[name][1]}
+        _, extra, ranks = VARIANTS[name]
+        env = {**os.environ, **extra}
         print(f"running: {name} …", file=sys.stderr, flush=True)
-        done = subprocess.run(
-            [sys.executable, __file__, *(["--quick"] if quick else []), "--one", name],
-            env=env,
-            capture_output=True,
-            text=True,
-        )
+        mpirun = [str(Path(sys.executable).parent / "mpirun"), "-n", str(ranks)]
+        command = [*(mpirun if ranks > 1 else []), sys.executable, __file__,
+                   *(["--quick"] if quick else []), "--one", name]  # fmt: skip
+        done = subprocess.run(command, env=env, capture_output=True, text=True)
         if done.returncode != 0:
             print(done.stderr[-2000:], file=sys.stderr)
             raise SystemExit(f"{name}: failed (exit code {done.returncode})")

@@ -9,7 +9,6 @@ every step written so far), and closes in ``close``. Units: SI, named in the col
 from __future__ import annotations
 
 import csv
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
@@ -293,13 +292,11 @@ class _CycleHistory:
         self.parameter = parameter  # the cycle's load parameter, written with every step
         self._tensioned = None  # (RunStep, arrays, load) of the latest tension step
         self.started = False
-        self.seconds = 0.0  # wall time spent recording (s)
 
     def _arrays(self, ctx: StepContext) -> dict:
         raise NotImplementedError
 
     def record(self, ctx: StepContext) -> None:
-        t0 = time.perf_counter()
         load = ctx.problem.setup.get(self.parameter)
         if not ctx.cycle:
             self._tensioned = (ctx.step, self._arrays(ctx), load)
@@ -309,7 +306,6 @@ class _CycleHistory:
                 if self._tensioned is not None:
                     self._write(*self._tensioned)
             self._write(ctx.step, self._arrays(ctx), load)
-        self.seconds += time.perf_counter() - t0
 
     def _write(self, step: RunStep, arrays: dict, load: float) -> None:
         self.writer.write(step.number, step.time, arrays, load=load)
@@ -419,18 +415,15 @@ class CheckpointRecorder:
 
     def __init__(self, folder: Path):
         self.folder = Path(folder)
-        self.seconds = 0.0
 
     def record(self, ctx: StepContext) -> None:
         from .checkpoint import write_checkpoint
 
         if ctx.position is None:
             return
-        t0 = time.perf_counter()
         write_checkpoint(self.folder / "checkpoint.h5", ctx.checkpoint)
         if not ctx.cycle:
             write_checkpoint(self.folder / "tensioned.h5", ctx.checkpoint)
-        self.seconds += time.perf_counter() - t0
 
     def close(self) -> None:
         pass

@@ -527,7 +527,9 @@ def run_programme_with_outputs(
         report = None
         if case.fatigue.outputs and len(result.cycle_steps):
             recording = sum(
-                r.seconds for r in recorders if isinstance(r, PairHistory | WireSectionHistory)
+                result.output_timings.get(type(r).__name__, 0.0)
+                for r in recorders
+                if isinstance(r, PairHistory | WireSectionHistory)
             )
             report = run_fatigue_report(case, result, recording, stream)
         if case.output.plots:

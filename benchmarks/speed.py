@@ -35,7 +35,6 @@ VARIANTS = {
     "before": (["steps.stall=false", "steps.balance=0"], {}, 1),
     "stall test": (["steps.balance=0"], {}, 1),
     "stall + balance (default)": ([], {}, 1),
-    "default + 2 BLAS threads": ([], {"OPENBLAS_NUM_THREADS": "2"}, 1),
     "default on 2 ranks": ([], {}, 2),
     # not a speed setting: how far the results move with the load path (friction remembers it)
     "default, lateral steps x2": (["steps.lateral=500", "steps.lateral_max=800"], {}, 1),

@@ -26,6 +26,7 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     lateral = 4.3e3           # N, saddle load amplitude
     curvature = 0.5           # 1/m, bending: nominal curvature amplitude
     cycle = [1.0, 0.0, -1.0, 0.0]   # targets after tensioning, in units of lateral or curvature
+                                    # ([0.0]: the tension alone)
     saddle_length = 0.02      # m, axial length of the saddle at midspan
     zone = 0.4                # m, bending: central zone where curvature is measured
     direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load / stretched fibre
@@ -321,6 +322,11 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
     if load.kind == "bending" and load.zone >= length:
         raise CaseError(
             f"{source}: [load] zone = {load.zone} m must be shorter than [mesh] length = {length} m"
+        )
+    if load.sweep and not any(load.cycle):
+        raise CaseError(
+            f"{source}: [load] sweep = {list(load.sweep)} needs a cycle with a target other "
+            f"than 0 (cycle = {list(load.cycle)} stays at zero load)"
         )
     fatigue = sections["fatigue"]
     from .fatigue.sn import SN_CURVES

@@ -66,14 +66,17 @@ class LoadProgramme:
 
     def weights(self) -> list[float]:
         """Share of the whole programme (for progress): stages of other parameters (tensioning)
-        count for 10 % together when there is a cycle, the cycle stages by their path length."""
+        count for 10 % together when there is a cycle, the cycle stages by their path length;
+        a cycle that goes nowhere (targets all 0: tension only) counts for nothing."""
         lengths = self.path_lengths()
         cycle = [s.parameter == self.cycle_parameter for s in self.stages]
         cycle_path = sum(l for l, c in zip(lengths, cycle, strict=True) if c)
         n_other = sum(1 for c in cycle if not c)
         other_share = 0.1 if cycle_path > 0 else 1.0
         return [
-            (1 - other_share) * l / cycle_path if c else other_share / max(n_other, 1)
+            ((1 - other_share) * l / cycle_path if cycle_path > 0 else 0.0)
+            if c
+            else other_share / max(n_other, 1)
             for l, c in zip(lengths, cycle, strict=True)
         ]
 

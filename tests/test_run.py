@@ -72,6 +72,7 @@ def test_a_case_file_writes_to_results_named_after_it(tmp_path):
         ("[contact]\nkn = 1e7\n", r"unknown setting\(s\) in \[contact\]: \['kn'\]"),
         ("[load]\ntension = 'big'\n", r"\[load\] tension = 'big': expected a number"),
         ("[load]\ncycle = []\n", "expected at least one lateral target"),
+        ("[load]\ncycle = [0.0]\nsweep = [1e3]\n", r"needs a cycle with a target other than 0"),
         ("[load]\ndirection = [0, 0, 1]\n", "a direction across the strand axis"),
         ("[steps]\nmax_iterations = 2.5\n", "expected a whole number"),
         ("[steps]\nlateral = 500.0\n", "exceeds lateral_max"),
@@ -305,3 +306,16 @@ def test_programme_time_runs_one_unit_per_stage():
     prog = LoadProgramme(stages, "lateral")
     assert prog.time(0, 10e3) == 0.25 and prog.time(0, 40e3) == 1.0
     assert prog.time(1, 1e3) == 1.25 and prog.time(2, 1e3) == 2.75 and prog.time(3, -4e3) == 4.0
+
+
+def test_progress_weights_share_the_programme_also_when_the_cycle_stays_at_zero():
+    """Progress shares sum to 1; a cycle that goes nowhere (``cycle = [0.0]``: tension only)
+    leaves all of it to the tension instead of dividing by its zero path length."""
+    from strand.programme import LoadProgramme, Stage
+
+    tension = Stage("tension", "tension", 40e3, 10e3, 100.0)
+    for targets, expected in [((1.0, 0.0, -1.0, 0.0), [0.1, 0.225, 0.225, 0.225, 0.225]),
+                              ((0.0,), [1.0, 0.0])]:  # fmt: skip
+        legs = [Stage(f"leg {i}", "lateral", 4.3e3 * c, 250.0, 4.0) for i, c in enumerate(targets)]
+        weights = LoadProgramme((tension, *legs), "lateral").weights()
+        assert weights == pytest.approx(expected)

@@ -30,14 +30,14 @@ import numpy as np
 ROOT = Path("results/benchmark_speed")
 QUICK = ["mesh.length=0.15", "load.lateral=1000"]  # a smoke test of the benchmark itself
 
-#: name: (case settings, extra environment, MPI ranks)
+#: name: (case settings, MPI ranks)
 VARIANTS = {
-    "before": (["steps.stall=false", "steps.balance=0"], {}, 1),
-    "stall test": (["steps.balance=0"], {}, 1),
-    "stall + balance (default)": ([], {}, 1),
-    "default on 2 ranks": ([], {}, 2),
+    "before": (["steps.stall=false", "steps.balance=0"], 1),
+    "stall test": (["steps.balance=0"], 1),
+    "stall + balance (default)": ([], 1),
+    "default on 2 ranks": ([], 2),
     # not a speed setting: how far the results move with the load path (friction remembers it)
-    "default, lateral steps x2": (["steps.lateral=500", "steps.lateral_max=800"], {}, 1),
+    "default, lateral steps x2": (["steps.lateral=500", "steps.lateral_max=800"], 1),
 }
 
 
@@ -107,13 +107,12 @@ def turning_points(folder: Path) -> dict[int, dict]:
 def main(names: list[str], quick: bool) -> None:
     rows = {}
     for name in names:
-        _, extra, ranks = VARIANTS[name]
-        env = {**os.environ, **extra}
+        _, ranks = VARIANTS[name]
         print(f"running: {name} …", file=sys.stderr, flush=True)
         mpirun = [str(Path(sys.executable).parent / "mpirun"), "-n", str(ranks)]
         command = [*(mpirun if ranks > 1 else []), sys.executable, __file__,
                    *(["--quick"] if quick else []), "--one", name]  # fmt: skip
-        done = subprocess.run(command, env=env, capture_output=True, text=True)
+        done = subprocess.run(command, capture_output=True, text=True)
         if done.returncode != 0:
             print(done.stderr[-2000:], file=sys.stderr)
             raise SystemExit(f"{name}: failed (exit code {done.returncode})")

@@ -35,7 +35,9 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               # sweep.csv beside them; [] runs lateral (curvature) alone
 
     [steps]
-    tension = 10e3            # N, first tension increment (grows ×growth after easy steps)
+    tension = 1e3             # N, first tension increment (grows ×growth after easy steps);
+                              # the first step closes every contact pair without friction, so
+                              # its size sets the wire forces' load-step error (README)
     lateral = 250.0           # N, first lateral increment of each leg of the cycle
     lateral_max = 400.0       # N, largest lateral increment
     curvature = 0.005         # 1/m, bending: first curvature increment of each leg
@@ -127,7 +129,7 @@ class LoadSettings:
 
 @dataclass(frozen=True)
 class StepSettings:
-    tension: float = 10e3  # N
+    tension: float = 1e3  # N
     lateral: float = 250.0  # N
     lateral_max: float = 400.0  # N
     curvature: float = 0.005  # 1/m

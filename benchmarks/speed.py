@@ -9,7 +9,8 @@ and in failed attempts, LU factorisations, time per LU, time in outputs, peak me
 largest rank), and the outputs' time by recorder; then each variant's results against the
 first's at the programme's turning points (end of tension, the two peaks, the two returns to
 zero): the largest difference in midspan deflection and in end displacement (µm), and in the
-axial force of any element relative to the largest (axial_forces.csv).
+axial force of any element relative to the largest (axial_forces.csv); and, when it is among the
+variants, against the run with every load step halved: the load-step error of each variant.
 The issue's bar for "same results": 0.1 µm and 1e-4.
 """
 
@@ -36,9 +37,16 @@ VARIANTS = {
     "stall test": (["steps.balance=0"], 1),
     "stall + balance (default)": ([], 1),
     "default on 2 ranks": ([], 2),
-    # not a speed setting: how far the results move with the load path (friction remembers it)
+    "first tension step 10 kN": (["steps.tension=10e3"], 1),
+    # not speed settings: how far the results move with the load path (friction remembers it)
     "default, lateral steps x2": (["steps.lateral=500", "steps.lateral_max=800"], 1),
+    "default, steps halved": (
+        ["steps.tension=500", "steps.lateral=125", "steps.lateral_max=200"],
+        1,
+    ),
 }
+#: the variant whose results stand in for the load-step converged ones
+HALVED = "default, steps halved"
 
 
 def slug(name: str) -> str:
@@ -129,12 +137,20 @@ def main(names: list[str], quick: bool) -> None:
     for name, r in rows.items():
         by = sorted(r["output_by"].items(), key=lambda kv: -kv[1])
         print(f"outputs of '{name}' (s): " + ", ".join(f"{k} {v:.0f}" for k, v in by))
-    reference = names[0]
+    compare(names, names[0])
+    if HALVED in names[1:]:
+        compare(names, HALVED)
+
+
+def compare(names: list[str], reference: str) -> None:
+    """Print every other variant's largest differences from ``reference`` at the turning points."""
     ref = turning_points(ROOT / slug(reference))
     print(f"\nresults against '{reference}' at the ends of the programme's stages (t = "
           f"{', '.join(str(t) for t in ref)}):")  # fmt: skip
     print(f"{'variant':30s} {'deflection (µm)':>15s} {'end (µm)':>9s} {'axial force':>12s}")
-    for name in names[1:]:
+    for name in names:
+        if name == reference:
+            continue
         other = turning_points(ROOT / slug(name))
         d = max(abs(other[t]["deflection"] - ref[t]["deflection"]) for t in ref)
         e = max(abs(other[t]["end"] - ref[t]["end"]) for t in ref)

@@ -1,6 +1,7 @@
 """The default case with yesterday's solver settings beside today's, measured in one run.
 
-Run: .venv/bin/python benchmarks/speed.py [--quick] [variant …]   (--quick: 0.15 m to ±1 kN)
+Run: .venv/bin/python benchmarks/speed.py [--quick] [variant …]   (--quick: 0.15 m to ±1 kN;
+no variant named: those of DEFAULT_RUN)
 
 Every variant runs the whole default case (Cardinal, 1 m, 40 kN, saddle cycle to ±4.3 kN, every
 output) in a process of its own, one after the other, so that each has the machine and its own
@@ -31,11 +32,14 @@ import numpy as np
 ROOT = Path("results/benchmark_speed")
 QUICK = ["mesh.length=0.15", "load.lateral=1000"]  # a smoke test of the benchmark itself
 
+#: Newton with full steps, the default before the critical-point line search
+BASIC = ['steps.line_search="basic"']
 #: name: (case settings, MPI ranks)
 VARIANTS = {
-    "before": (["steps.stall=false", "steps.balance=0"], 1),
-    "stall test": (["steps.balance=0"], 1),
-    "stall + balance (default)": ([], 1),
+    "before: no stall test, full steps": (["steps.stall=false", "steps.balance=0", *BASIC], 1),
+    "stall test, full steps": (["steps.balance=0", *BASIC], 1),
+    "stall + balance, full steps": (BASIC, 1),
+    "default: cp line search": ([], 1),
     "default on 2 ranks": ([], 2),
     "first tension step 10 kN": (["steps.tension=10e3"], 1),
     # not speed settings: how far the results move with the load path (friction remembers it)
@@ -45,6 +49,14 @@ VARIANTS = {
         1,
     ),
 }
+#: what a run without named variants measures: the line search's gain, the second rank's, and
+#: the load-step error of both line searches
+DEFAULT_RUN = [
+    "stall + balance, full steps",
+    "default: cp line search",
+    "default on 2 ranks",
+    "default, steps halved",
+]
 #: the variant whose results stand in for the load-step converged ones
 HALVED = "default, steps halved"
 
@@ -177,4 +189,4 @@ if __name__ == "__main__":
         if MPI.COMM_WORLD.rank == 0:
             print(json.dumps(dict(measured, peak_mib=max(peaks))))
     else:
-        main(args or list(VARIANTS), quick)
+        main(args or DEFAULT_RUN, quick)

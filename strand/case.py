@@ -47,6 +47,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     max_iterations = 12       # Newton iterations per attempt
     stall = true              # cut an attempt whose residual has not halved in two iterations
                               # (from the 4th on): it would not converge (false: run to the limit)
+    line_search = "cp"        # Newton's line search: PETSc's cp (critical point: one secant
+                              # step along each Newton direction), or basic (full steps), bt, l2
     tolerance = 1e-2          # N, absolute residual tolerance (2.5e-7 of the tension)
     balance = 1e-4            # or converged when no node is out of balance by more than this
                               # fraction of the mean wire tension T/n (66 mN here), nor by that
@@ -138,6 +140,7 @@ class StepSettings:
     cuts: int = 6
     max_iterations: int = 12
     stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
+    line_search: str = "cp"  # NewtonOptions.linesearch (docs/theory.md §6)
     tolerance: float = 1e-2  # N
     balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
 
@@ -205,6 +208,8 @@ SECTIONS = {
 _SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 #: settings for which 0 means "off" (they must not be negative)
 _ZERO_IS_OFF = {("steps", "balance")}
+#: PETSc's line searches for Newton (``[steps] line_search``)
+LINE_SEARCHES = ("cp", "basic", "bt", "l2")
 
 
 def _value(section: str, key: str, value, default):
@@ -300,6 +305,11 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
         raise CaseError(f"{source}: cable: {e}") from None
     sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
     steps = sections["steps"]
+    if steps.line_search not in LINE_SEARCHES:
+        raise CaseError(
+            f"{source}: [steps] line_search = {steps.line_search!r}: expected one of "
+            f"{list(LINE_SEARCHES)}"
+        )
     if steps.lateral > steps.lateral_max:
         raise CaseError(f"{source}: [steps] lateral = {steps.lateral} exceeds lateral_max")
     if steps.curvature > steps.curvature_max:

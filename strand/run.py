@@ -339,7 +339,7 @@ def newton_options(case: Case) -> NewtonOptions:
     diameter = max(layer.wire.diameter for layer in case.cable.layers)
     return NewtonOptions(
         atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
-        stall_after=NewtonOptions.stall_after if s.stall else 0,
+        stall_after=NewtonOptions.stall_after if s.stall else 0, linesearch=s.line_search,
     )  # fmt: skip
 
 

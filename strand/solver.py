@@ -122,9 +122,9 @@ class NewtonOptions:
     #: below ``stall_factor`` × the residual two iterations earlier (and is not yet within
     #: ``floor_factor`` of the tolerance) is stopped as failed, so that its step is cut at
     #: once. In its quadratic basin Newton gains orders of magnitude per iteration; a solve
-    #: that has not halved its residual in two iterations is cycling between contact states
-    #: or diverging. In the default Cardinal case all such solves but one ran on to ``max_it``
-    #: without converging; the one (leg 3, 8 iterations) recovered by chance after three
+    #: that has not halved its residual in two iterations is cycling (docs/theory.md §6)
+    #: or diverging. In the default Cardinal case with full steps, all such solves but one
+    #: ran on to ``max_it`` without converging; the one (leg 3, 8 iterations) recovered by chance after three
     #: iterations without progress, and cutting it moves the results by a change of load
     #: path (docs/theory.md §6). 0 switches it off.
     stall_after: int = 4
@@ -134,6 +134,9 @@ class NewtonOptions:
     #: in moment (largest nodal residual, all ranks); 0 leaves this test out
     force_tol: float = 0.0
     moment_tol: float = 0.0
+    #: PETSc's line search: ``basic`` takes full Newton steps; strand's runs take ``cp``
+    #: (``[steps] line_search``), which breaks the 2-cycles of slipping contact pairs
+    #: (docs/theory.md §6)
     linesearch: str = "basic"
     petsc: dict = field(
         default_factory=dict

@@ -82,6 +82,7 @@ def test_a_case_file_writes_to_results_named_after_it(tmp_path):
             r"balance = -0.0001: expected a positive number, or 0 for off",
         ),
         ("[steps]\nstall = 1\n", r"\[steps\] stall = 1: expected true or false"),
+        ("[steps]\nline_search = 'nl'\n", r"\[steps\] line_search = 'nl': expected one of"),
         ("[output]\nplots = 1\n", "expected true or false"),
         ("[solver]\natol = 1\n", r"unknown setting\(s\) \['solver'\]"),
     ],

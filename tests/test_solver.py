@@ -187,6 +187,72 @@ def test_stall_test_stops_a_stagnating_solve_early():
     assert on.residuals[4] > 0.5 * on.residuals[2]
 
 
+class SaturatingSpring:
+    """A force F_s arctan((u_x − c)/ε) (N) on one node's u_x, with its exact tangent: it
+    saturates at ±F_s π/2 within a few ε of c, as a slipping pair's friction force does with
+    its direction. Newton on such a force, from far off, jumps to and fro about c."""
+
+    def __init__(self, node, F_s, eps, c):
+        self.stencils = np.array([[node]], dtype=np.int32)
+        self.F_s, self.eps, self.c = F_s, eps, c
+
+    def evaluate(self, w, jacobian):
+        x = (w[self.stencils[0, 0], 0] - self.c) / self.eps
+        f, K = np.zeros((1, 6)), np.zeros((1, 6, 6))
+        f[0, 0] = self.F_s * np.arctan(x)
+        K[0, 0, 0] = self.F_s / self.eps / (1 + x * x)
+        return f, K
+
+    def commit(self):
+        pass
+
+    def rollback(self):
+        pass
+
+
+def saturating_tip(options):
+    """A bar tip held by a saturating spring (1 kN, ε = 1 µm) centred at c = 10 µm and pulled
+    by EA/L × c, so that u_x = c exactly at the solution. Returns the solver and the tip's
+    block."""
+    mesh, V, roots, tips = two_bars()
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
+    bc = fem.dirichletbc(np.zeros(6), roots, V)
+    c = 10e-6
+    terms = [
+        SaturatingSpring(tips[0], 1e3, 1e-6, c),
+        NodalLoad([tips[0]], [[S["EA"] * c, 0, 0, 0, 0, 0]], 1.0),
+    ]
+    return NewtonSolver(beam.residual(), w, [bc], terms=terms, options=options), tips[0]
+
+
+def test_line_search_breaks_the_two_cycle_of_full_newton_steps():
+    """Full Newton steps (``basic``) on the saturating spring fall into a 2-cycle about the
+    solution (u ≈ c ± 94 µm, with an exact tangent) until the stall test stops them; from an
+    iterate of that cycle they stay in it. A line search, the critical-point one (``cp``,
+    strand's default for its runs) or backtracking (``bt``, ``l2``), converges from there to
+    the exact solution u = c in at most 4 iterations. (From much farther off, cp's one secant
+    step can stop short: the stall test and the step cut are there for that.)"""
+    options = NewtonOptions(max_it=12, atol=1e-6, rtol=1e-14)
+    c = 10e-6
+    solver, tip = saturating_tip(replace(options, linesearch="basic"))
+    full = solver.solve()
+    r = full.residuals
+    assert not full.converged and full.reason == "DIVERGED_STALLED"
+    assert r[-1] > 0.9 * r[-3] > 1e3  # no progress in two iterations: it cycles
+    cycle = solver.w.x.array.copy()  # the last iterate: a point of the cycle
+    assert abs(cycle.reshape(-1, 6)[tip, 0] - c) > 80e-6
+    for search in ("basic", "cp", "bt", "l2"):
+        solver, tip = saturating_tip(replace(options, linesearch=search))
+        solver.w.x.array[:] = cycle
+        result = solver.solve()
+        if search == "basic":
+            assert not result.converged
+            continue
+        assert result.converged and result.iterations <= 4, (search, result.residuals)
+        assert solver.w.x.array.reshape(-1, 6)[tip, 0] == pytest.approx(c, rel=1e-9)
+
+
 def test_stall_test_leaves_converging_solves_alone():
     """Exact (scale 1) and halving (scale 2: the residual falls by 1/2 per iteration, 1/4 per
     two) solves take the same iterations and residuals with and without the stall test."""

@@ -1,12 +1,14 @@
 """Cost against cable length: Cardinal at 0.25, 0.5, 1 and 2 m, tension and a first lateral leg.
 
-Run: .venv/bin/python benchmarks/length_scaling.py [lengths…]
+Run: .venv/bin/python benchmarks/length_scaling.py [lengths…] [setting=value …]
+(settings as `strand run --set`, e.g. 'steps.line_search="basic"' for full Newton steps)
 
 Every length runs the default case's tension (40 kN) and a first leg to a lateral load scaled to
 give the same midspan moment, P = 1 kN × (1 m / L) (PL/8 for the clamped span), so that the
 work per length is alike; outputs are off but the step table. Prints per length the unknowns,
-steps, Newton iterations, wall time, time per iteration and its LU share, and peak memory (of
-the process so far), then the exponents b of time ∝ L^b fitted over the lengths (goal: b ≤ 1.1).
+steps, Newton iterations (in converged steps, and in failed attempts), wall time, time per
+converged iteration and its LU share, and peak memory (of the process so far), then the
+exponents b of time ∝ L^b fitted over the lengths (goal: b ≤ 1.1).
 """
 
 import strand  # noqa: F401
@@ -25,14 +27,14 @@ from strand.geometry import build_geometry
 from strand.run import run_case
 
 
-def main(lengths: list[float]) -> None:
+def main(lengths: list[float], extra: list[str]) -> None:
     rows = []
     sink = open("/dev/null", "w")  # noqa: SIM115
     for L in lengths:
         settings = [f"mesh.length={L}", f"load.lateral={1000.0 / L}", "load.cycle=[1.0]",
                     f"steps.lateral={250.0 / L}", f"steps.lateral_max={400.0 / L}",
                     "output.plots=false", "output.fields=false", "fatigue.outputs=false",
-                    "output.checkpoint=false"]  # fmt: skip
+                    "output.checkpoint=false", *extra]  # fmt: skip
         case = load_case(None, settings)
         t0 = time.perf_counter()
         r = run_case(case, Path(f"results/benchmark_length/{L:g}"), stream=sink, overwrite=True)
@@ -42,11 +44,12 @@ def main(lengths: list[float]) -> None:
         memory = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
         g = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
         rows.append((L, r, seconds, lu, memory, 6 * len(g.points)))
-    print(f"{'L (m)':>6s} {'unknowns':>9s} {'steps':>6s} {'its':>5s} {'time (s)':>9s} "
-          f"{'s/it':>6s} {'LU share':>9s} {'peak MiB':>9s}")  # fmt: skip
+    print(f"{'L (m)':>6s} {'unknowns':>9s} {'steps':>6s} {'its':>5s} {'+failed':>7s} "
+          f"{'time (s)':>9s} {'s/it':>6s} {'LU share':>9s} {'peak MiB':>9s}")  # fmt: skip
     for L, r, seconds, lu, memory, unknowns in rows:
         its = max(r.iterations, 1)
-        print(f"{L:6.2f} {unknowns:9d} {len(r.steps):6d} {r.iterations:5d} {seconds:9.1f} "
+        failed = sum(s.failed_iterations for s in r.steps)
+        print(f"{L:6.2f} {unknowns:9d} {len(r.steps):6d} {r.iterations:5d} {failed:7d} {seconds:9.1f} "
               f"{r.timings['solve'] / its:6.3f} {100 * lu / r.timings['solve']:8.0f} % "
               f"{memory:9.0f}{'  FAILED' if r.failure else ''}")  # fmt: skip
     x = np.log([row[0] for row in rows])
@@ -64,4 +67,6 @@ if __name__ == "__main__":
     from strand.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main([float(a) for a in sys.argv[1:]] or [0.25, 0.5, 1.0, 2.0])
+    args = sys.argv[1:]
+    settings = [a for a in args if "=" in a]
+    main([float(a) for a in args if "=" not in a] or [0.25, 0.5, 1.0, 2.0], settings)

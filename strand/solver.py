@@ -124,9 +124,9 @@ class NewtonOptions:
     #: once. In its quadratic basin Newton gains orders of magnitude per iteration; a solve
     #: that has not halved its residual in two iterations is cycling (docs/theory.md §6)
     #: or diverging. In the default Cardinal case with full steps, all such solves but one
-    #: ran on to ``max_it`` without converging; the one (leg 3, 8 iterations) recovered by chance after three
-    #: iterations without progress, and cutting it moves the results by a change of load
-    #: path (docs/theory.md §6). 0 switches it off.
+    #: ran on to ``max_it`` without converging; the one (leg 3, 8 iterations) recovered by
+    #: chance after three iterations without progress, and cutting it moves the results by a
+    #: change of load path (docs/theory.md §6). 0 switches it off.
     stall_after: int = 4
     stall_factor: float = 0.5
     #: convergence in physical terms: from the first iteration on, a solve also ends when no

@@ -25,14 +25,11 @@ from pathlib import Path
 import h5py
 import numpy as np
 import numpy.typing as npt
+from mpi4py import MPI
 
-import strand  # noqa: F401
-
-from mpi4py import MPI  # isort: skip
-
-from .parallel import is_root  # isort: skip
-from .programme import Position  # isort: skip
-from .solver import RampState  # isort: skip
+from .parallel import is_root
+from .programme import Position
+from .solver import RampState
 
 __all__ = [
     "Checkpoint",

@@ -4,17 +4,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import basix.ufl
+import dolfinx
 import numpy as np
 import numpy.typing as npt
+from dolfinx import fem
+from mpi4py import MPI
 
-import strand  # noqa: F401
-
-import basix.ufl  # isort: skip
-import dolfinx  # isort: skip
-from dolfinx import fem  # isort: skip
-from mpi4py import MPI  # isort: skip
-
-from .geometry import StrandGeometry  # isort: skip
+from .geometry import StrandGeometry
 
 __all__ = [
     "polyline_mesh",

@@ -8,24 +8,21 @@ order. Units: m, N, Pa, rad.
 
 from __future__ import annotations
 
+import dolfinx
 import numpy as np
 import numpy.typing as npt
+from dolfinx import fem
+from mpi4py import MPI
 
-import strand  # noqa: F401
+from forms import CircularSection, ReissnerBeam
 
-import dolfinx  # isort: skip
-from dolfinx import fem  # isort: skip
-from mpi4py import MPI  # isort: skip
-
-from forms import CircularSection, ReissnerBeam  # isort: skip
-
-from .contact.element import ContactSettings  # isort: skip
-from .contact.strand_pairs import contact_groups, pair_stencils  # isort: skip
-from .contact.sliding import sliding_groups, sliding_windows  # isort: skip
-from .geometry import StrandGeometry  # isort: skip
-from .mesh import CableMesh, beam_space, cable_mesh, input_to_block  # isort: skip
-from .output import cell_function  # isort: skip
-from .partition import DistributionError, owned_rows  # isort: skip
+from .contact.element import ContactSettings
+from .contact.sliding import sliding_groups, sliding_windows
+from .contact.strand_pairs import contact_groups, pair_stencils
+from .geometry import StrandGeometry
+from .mesh import CableMesh, beam_space, cable_mesh, input_to_block
+from .output import cell_function
+from .partition import DistributionError, owned_rows
 
 __all__ = ["StrandModel", "layer_section", "strand_stencils"]
 

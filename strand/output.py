@@ -6,15 +6,12 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import dolfinx
 import numpy as np
 import numpy.typing as npt
+from dolfinx import fem
 
-import strand  # noqa: F401
-
-import dolfinx  # isort: skip
-from dolfinx import fem  # isort: skip
-
-from forms import ReissnerBeam  # isort: skip
+from forms import ReissnerBeam
 
 __all__ = ["FieldWriter", "cell_function", "meshio_layout", "section_force_values"]
 

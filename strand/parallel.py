@@ -14,9 +14,7 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-import strand  # noqa: F401
-
-from mpi4py import MPI  # isort: skip
+from mpi4py import MPI
 
 __all__ = ["is_root", "root_open", "on_root", "root_stream", "serial_only"]
 

@@ -20,13 +20,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import dolfinx
 import numpy as np
 import numpy.typing as npt
-
-import strand  # noqa: F401
-
-import dolfinx  # isort: skip
-from mpi4py import MPI  # isort: skip
+from mpi4py import MPI
 
 __all__ = ["slab_partitioner", "slab_destinations", "owned_rows", "DistributionError"]
 

@@ -13,16 +13,13 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
 
-import strand  # noqa: F401
-
-import ufl  # isort: skip
-from dolfinx import fem  # isort: skip
-from mpi4py import MPI  # isort: skip
-
-from .cable import Cable  # isort: skip
-from .geometry import LINE  # isort: skip
-from .model import StrandModel  # isort: skip
+from .cable import Cable
+from .geometry import LINE
+from .model import StrandModel
 
 __all__ = [
     "CellEvaluator",

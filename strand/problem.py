@@ -13,17 +13,14 @@ from dataclasses import replace
 
 import numpy as np
 import numpy.typing as npt
+from mpi4py import MPI
 
-import strand  # noqa: F401
-
-from mpi4py import MPI  # isort: skip
-
-from .contact.element import ContactSettings  # isort: skip
-from .geometry import StrandGeometry  # isort: skip
-from .model import StrandModel  # isort: skip
-from .setups.base import TestSetup  # isort: skip
-from .setups.saddle import SaddleTest  # isort: skip
-from .solver import NewtonOptions, NewtonSolver  # isort: skip
+from .contact.element import ContactSettings
+from .geometry import StrandGeometry
+from .model import StrandModel
+from .setups.base import TestSetup
+from .setups.saddle import SaddleTest
+from .solver import NewtonOptions, NewtonSolver
 
 __all__ = ["StrandProblem"]
 

@@ -26,14 +26,12 @@ from pathlib import Path
 
 import numpy as np
 
-import strand  # noqa: F401
-
-from .case import Case  # isort: skip
-from .checkpoint import CheckpointError, read_checkpoint, restore  # isort: skip
-from .folder import RUN_MARKER, FolderError, prepare_results_folder  # isort: skip
-from .parallel import is_root, on_root, root_stream  # isort: skip
-from .geometry import LINE, build_geometry  # isort: skip
-from .post import (  # isort: skip
+from .case import Case
+from .checkpoint import CheckpointError, read_checkpoint, restore
+from .folder import RUN_MARKER, FolderError, prepare_results_folder
+from .geometry import LINE, build_geometry
+from .parallel import is_root, on_root, root_stream
+from .post import (
     CellEvaluator,
     CellResults,
     bending_stiffness_bounds,
@@ -41,12 +39,12 @@ from .post import (  # isort: skip
     fibre_model,
     saddle_beam_reference,
 )
-from .problem import StrandProblem  # isort: skip
-from .programme import LoadProgramme, Position, Stage, cycle_stages, run_programme  # isort: skip
-from .recorders import (  # isort: skip
+from .problem import StrandProblem
+from .programme import LoadProgramme, Position, Stage, cycle_stages, run_programme
+from .recorders import (
     AxialForceTable,
-    CheckpointRecorder,
     BendingTable,
+    CheckpointRecorder,
     FieldSeries,
     KeyStates,
     PairHistory,
@@ -57,9 +55,9 @@ from .recorders import (  # isort: skip
     StepTable,
     WireSectionHistory,
 )
-from .setups.bending import UniformBendingTest  # isort: skip
-from .setups.saddle import SaddleTest  # isort: skip
-from .solver import (  # isort: skip
+from .setups.bending import UniformBendingTest
+from .setups.saddle import SaddleTest
+from .solver import (
     Interrupt,
     LoadStepFailure,
     NewtonOptions,

@@ -25,17 +25,14 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Protocol
 
+import dolfinx
+import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import numpy.typing as npt
-
-import strand  # noqa: F401  (loads the dolfinx wheel's libraries first)
-
-import dolfinx  # isort: skip
-import dolfinx.fem.petsc as fem_petsc  # isort: skip
-import ufl  # isort: skip
-from dolfinx import fem  # isort: skip
-from mpi4py import MPI  # isort: skip
-from petsc4py import PETSc  # isort: skip
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+from petsc4py import PETSc
 
 __all__ = [
     "PairTerms",

@@ -9,9 +9,7 @@ from functools import partial
 import numpy as np
 import pytest
 
-import strand  # noqa: F401
-
-from strand.analytical import (  # isort: skip
+from strand.analytical import (
     StickSlipLaw,
     TensionedBeam,
     clamped_deflection,
@@ -19,18 +17,18 @@ from strand.analytical import (  # isort: skip
     loop_area,
     masing,
 )
-from strand.cable import cardinal  # isort: skip
-from strand.case import CaseError, case_from_dict  # isort: skip
-from strand.contact.element import ContactSettings  # isort: skip
-from strand.geometry import build_geometry  # isort: skip
-from strand.post import (  # isort: skip
+from strand.cable import cardinal
+from strand.case import CaseError, case_from_dict
+from strand.contact.element import ContactSettings
+from strand.geometry import build_geometry
+from strand.post import (
     bending_stiffness_bounds,
     cell_results,
     saddle_beam_reference,
 )
-from strand.problem import StrandProblem  # isort: skip
-from strand.setups.bending import UniformBendingTest  # isort: skip
-from strand.solver import LoadStepper, NewtonOptions  # isort: skip
+from strand.problem import StrandProblem
+from strand.setups.bending import UniformBendingTest
+from strand.solver import LoadStepper, NewtonOptions
 
 
 def nineteen_wire(friction: float | None = None):

@@ -14,13 +14,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_run import SEVEN_WIRE
 
-import strand  # noqa: F401
-
-from strand.case import CaseError, load_case  # isort: skip
-from strand.cli import main  # isort: skip
-
-from test_run import SEVEN_WIRE  # isort: skip
+from strand import __version__
+from strand.case import CaseError, load_case
+from strand.cli import main
 
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
 
@@ -89,7 +87,7 @@ def test_version(capsys):
     with pytest.raises(SystemExit) as exit_:
         main(["--version"])
     assert exit_.value.code == 0
-    assert capsys.readouterr().out.strip() == f"strand {strand.__version__}"
+    assert capsys.readouterr().out.strip() == f"strand {__version__}"
 
 
 def test_a_second_run_into_a_folder_is_refused_and_overwrite_replaces_it(tmp_path, capsys):

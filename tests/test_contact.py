@@ -7,32 +7,30 @@ import pytest
 from dolfinx import fem
 from mpi4py import MPI
 
-import strand  # noqa: F401
-
-from forms import CircularSection, ReissnerBeam  # isort: skip
-from strand.contact.element import ContactGroup, ContactSettings  # isort: skip
-from strand.contact.hertz import compliance as compliance_of  # isort: skip
-from strand.contact.hertz import mindlin_ratio, point_coefficient  # isort: skip
-from strand.contact.laws import (  # isort: skip
+from forms import CircularSection, ReissnerBeam
+from strand.cable import CableError, cable_from_dict, cardinal
+from strand.contact.element import ContactGroup, ContactSettings
+from strand.contact.hertz import compliance as compliance_of
+from strand.contact.hertz import mindlin_ratio, point_coefficient
+from strand.contact.kinematics import (
+    NORMALS,
+    gap_derivatives,
+    rotation_matrix,
+    stencil_nodes,
+)
+from strand.contact.laws import (
     ElasticSlip,
     HertzLineLaw,
     HertzPointLaw,
     Mindlin,
     PenaltyLaw,
 )
-from strand.contact.measure import centreline_gaps  # isort: skip
-from strand.contact.kinematics import (  # isort: skip
-    NORMALS,
-    gap_derivatives,
-    rotation_matrix,
-    stencil_nodes,
-)
-from strand.cable import CableError, cable_from_dict, cardinal  # isort: skip
-from strand.geometry import LINE, POINT, build_geometry  # isort: skip
-from strand.mesh import beam_space, input_to_block, polyline_mesh  # isort: skip
-from strand.problem import StrandProblem  # isort: skip
-from strand.setups.saddle import saddle_weights  # isort: skip
-from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad  # isort: skip
+from strand.contact.measure import centreline_gaps
+from strand.geometry import LINE, POINT, build_geometry
+from strand.mesh import beam_space, input_to_block, polyline_mesh
+from strand.problem import StrandProblem
+from strand.setups.saddle import saddle_weights
+from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad
 
 R_A, R_B = 1.5e-3, 2.0e-3  # m
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6

@@ -7,10 +7,8 @@ import pytest
 from dolfinx import fem
 from mpi4py import MPI
 
-import strand  # noqa: F401
-
-from forms import CircularSection, ReissnerBeam  # isort: skip
-from strand.contact import (  # isort: skip
+from forms import CircularSection, ReissnerBeam
+from strand.contact import (
     PenaltyLaw,
     beam_nodes,
     candidate_pairs,
@@ -19,9 +17,9 @@ from strand.contact import (  # isort: skip
     locate_nodes,
     node_pairs,
 )
-from strand.contact.hertz import point_coefficient  # isort: skip
-from strand.mesh import beam_space, polyline_mesh  # isort: skip
-from strand.solver import NewtonSolver, NodalLoad  # isort: skip
+from strand.contact.hertz import point_coefficient
+from strand.mesh import beam_space, polyline_mesh
+from strand.solver import NewtonSolver, NodalLoad
 
 R = 1.5e-3  # m, both beams
 E, NU = 200e9, 0.3

@@ -11,18 +11,16 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
+from test_run import SEVEN_WIRE
 
-import strand  # noqa: F401
-
-from beam_cases import cantilever  # isort: skip
-from forms import CircularSection, ReissnerBeam  # isort: skip
-from strand.analytical import ei_min, poffenberger_swart  # isort: skip
-from strand.cable import cardinal  # isort: skip
-from strand.cli import main  # isort: skip
-from strand.contact import ElasticSlip, PenaltyLaw, candidate_pairs, contact_terms  # isort: skip
-from strand.contact import locate_nodes  # isort: skip
-from strand.contact.hertz import compliance, contact_ellipse, crossed_cylinders  # isort: skip
-from strand.fatigue import (  # isort: skip
+from beam_cases import cantilever
+from forms import CircularSection, ReissnerBeam
+from strand.analytical import ei_min, poffenberger_swart
+from strand.cable import cardinal
+from strand.cli import main
+from strand.contact import ElasticSlip, PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
+from strand.contact.hertz import compliance, contact_ellipse, crossed_cylinders
+from strand.fatigue import (
     SN_CURVES,
     crossing_cycles,
     miner_damage,
@@ -32,10 +30,9 @@ from strand.fatigue import (  # isort: skip
     shear_stress,
     surface_stress,
 )
-from strand.history import read_history  # isort: skip
-from strand.mesh import beam_space, polyline_mesh  # isort: skip
-from strand.solver import LoadStepper, NewtonSolver, NodalLoad  # isort: skip
-from test_run import SEVEN_WIRE  # isort: skip
+from strand.history import read_history
+from strand.mesh import beam_space, polyline_mesh
+from strand.solver import LoadStepper, NewtonSolver, NodalLoad
 
 # -- a crossing sheared to and fro (demos/demo_crossed_beams.py) ---------------------------------
 R, L, N_CELLS = 1.5e-3, 0.04, 40

@@ -14,16 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_run import SEVEN_WIRE
 
-import strand  # noqa: F401
-
-from strand.geometry import build_geometry  # isort: skip
-from strand.cable import cardinal  # isort: skip
-from strand.contact.element import ContactSettings  # isort: skip
-from strand.model import strand_stencils  # isort: skip
-from strand.partition import DistributionError, owned_rows, slab_destinations  # isort: skip
-
-from test_run import SEVEN_WIRE  # isort: skip
+from strand.cable import cardinal
+from strand.contact.element import ContactSettings
+from strand.geometry import build_geometry
+from strand.model import strand_stencils
+from strand.partition import DistributionError, owned_rows, slab_destinations
 
 MPIRUN = Path(sys.executable).parent / "mpirun"
 needs_mpirun = pytest.mark.skipif(not MPIRUN.exists(), reason="no mpirun beside the Python")

@@ -12,16 +12,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_mpi import MPIRUN, needs_mpirun
+from test_run import SEVEN_WIRE
 
-import strand  # noqa: F401
-
-from strand.case import load_case  # isort: skip
-from strand.checkpoint import read_checkpoint, write_checkpoint  # isort: skip
-from strand.cli import main  # isort: skip
-from strand.run import build_problem, run_case, run_programme_with_outputs  # isort: skip
-
-from test_mpi import MPIRUN, needs_mpirun  # isort: skip
-from test_run import SEVEN_WIRE  # isort: skip
+from strand.case import load_case
+from strand.checkpoint import read_checkpoint, write_checkpoint
+from strand.cli import main
+from strand.run import build_problem, run_case, run_programme_with_outputs
 
 QUIET = ["output.plots=false", "output.fields=false", "fatigue.outputs=false"]
 

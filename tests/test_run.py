@@ -7,14 +7,12 @@ import csv
 import numpy as np
 import pytest
 
-import strand  # noqa: F401
-
-from strand.cable import cardinal  # isort: skip
-from strand.case import CaseError, load_case  # isort: skip
-from strand.cli import main  # isort: skip
-from strand.contact.element import ContactGroup  # isort: skip
-from strand.contact.laws import PenaltyLaw  # isort: skip
-from strand.post import bending_stiffness_bounds, fibre_model  # isort: skip
+from strand.cable import cardinal
+from strand.case import CaseError, load_case
+from strand.cli import main
+from strand.contact.element import ContactGroup
+from strand.contact.laws import PenaltyLaw
+from strand.post import bending_stiffness_bounds, fibre_model
 
 SEVEN_WIRE = """
 [cable]

@@ -5,15 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_contact import fd_tangent, nineteen_wire, seven_wire
 
-import strand  # noqa: F401
-
-from strand.contact.element import ContactSettings  # isort: skip
-from strand.contact.laws import ElasticSlip, PenaltyLaw  # isort: skip
-from strand.contact.sliding import SlidingGroup, SlidingWindowError  # isort: skip
-from strand.problem import StrandProblem  # isort: skip
-from strand.solver import LoadStepper, NewtonOptions  # isort: skip
-from test_contact import fd_tangent, nineteen_wire, seven_wire  # isort: skip
+from strand.contact.element import ContactSettings
+from strand.contact.laws import ElasticSlip, PenaltyLaw
+from strand.contact.sliding import SlidingGroup, SlidingWindowError
+from strand.problem import StrandProblem
+from strand.solver import LoadStepper, NewtonOptions
 
 H = 3e-3  # m, segment length
 R = 1.5e-3  # m, wire radius

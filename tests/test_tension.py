@@ -9,15 +9,13 @@ from functools import partial
 import numpy as np
 import pytest
 
-import strand  # noqa: F401
-
-from strand.analytical import costello_stiffness  # isort: skip
-from strand.cable import cardinal  # isort: skip
-from strand.contact.element import ContactSettings  # isort: skip
-from strand.geometry import build_geometry  # isort: skip
-from strand.post import cell_results, section_resultants  # isort: skip
-from strand.problem import StrandProblem  # isort: skip
-from strand.solver import LoadStepper, NewtonOptions  # isort: skip
+from strand.analytical import costello_stiffness
+from strand.cable import cardinal
+from strand.contact.element import ContactSettings
+from strand.geometry import build_geometry
+from strand.post import cell_results, section_resultants
+from strand.problem import StrandProblem
+from strand.solver import LoadStepper, NewtonOptions
 
 TENSION, LENGTH = 10e3, 0.15  # N, m (1–2.3 lay lengths at 8–18°)
 

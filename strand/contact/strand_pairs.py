@@ -12,11 +12,10 @@ import numpy as np
 import numpy.typing as npt
 
 from ..geometry import LINE, POINT, StrandGeometry
+from ..partition import DistributionError, owned_rows
 from .element import ContactGroup, ContactSettings
 from .laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
 from .pairs import NodePairs, contact_terms, crossing_angle
-
-from ..partition import DistributionError, owned_rows  # isort: skip
 
 __all__ = ["strand_pairs", "pair_stencils", "contact_groups", "pair_laws", "wire_neighbours"]
 

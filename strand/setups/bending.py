@@ -40,15 +40,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+from dolfinx import fem
 
-import strand  # noqa: F401
-
-from dolfinx import fem  # isort: skip
-
-from ..contact.kinematics import rotation_matrix  # isort: skip
-from ..model import StrandModel  # isort: skip
-from ..post import section_resultants  # isort: skip
-from .base import TestSetup, pilot_links, quantity  # isort: skip
+from ..contact.kinematics import rotation_matrix
+from ..model import StrandModel
+from ..post import section_resultants
+from .base import TestSetup, pilot_links, quantity
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]
 

@@ -15,14 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+from dolfinx import fem
 
-import strand  # noqa: F401
-
-from dolfinx import fem  # isort: skip
-
-from ..model import StrandModel  # isort: skip
-from ..post import section_resultants  # isort: skip
-from .base import TestSetup, owned_load, pilot_links, quantity  # isort: skip
+from ..model import StrandModel
+from ..post import section_resultants
+from .base import TestSetup, owned_load, pilot_links, quantity
 
 __all__ = ["SaddleTest", "SaddleState", "MidspanBending", "saddle_weights"]
 

@@ -1,0 +1,31 @@
+"""Analytical references for any cable, physics only (numpy):
+
+* ``stick_slip``: stick–slip bending of a tensioned strand (EI_min, the layer slip law, Masing
+  cycles, loop areas);
+* ``rolling``: the stick slope when wires may roll on stuck point ties, and what a Hertz patch
+  offers against rolling and drilling;
+* ``beam``: the strand as one tensioned beam (midspan load, Poffenberger–Swart);
+* ``costello``: Costello's axial–torsional stiffness of a straight strand.
+"""
+
+from .beam import POFFENBERGER_SWART_DISTANCE, TensionedBeam, clamped_deflection, poffenberger_swart
+from .costello import costello_stiffness
+from .rolling import ContactPatch, StickEstimate, contact_patch, stick_bending_estimate
+from .stick_slip import EI_MIN_VARIANTS, StickSlipLaw, ei_min, loop_area, masing
+
+__all__ = [
+    "EI_MIN_VARIANTS",
+    "ei_min",
+    "StickSlipLaw",
+    "masing",
+    "loop_area",
+    "TensionedBeam",
+    "clamped_deflection",
+    "POFFENBERGER_SWART_DISTANCE",
+    "poffenberger_swart",
+    "costello_stiffness",
+    "StickEstimate",
+    "stick_bending_estimate",
+    "ContactPatch",
+    "contact_patch",
+]

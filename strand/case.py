@@ -85,7 +85,7 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 from .cable import Cable, CableError, cable_from_dict, cardinal, load_cable
-from .contact.element import ContactSettings
+from .contact_settings import ContactSettings
 
 __all__ = [
     "Case",

@@ -21,7 +21,8 @@ import time
 from strand.analytical import StickSlipLaw
 from strand.cable import cardinal
 from strand.case import case_from_dict
-from strand.post import bending_stiffness_bounds, uniform_bending_report
+from strand.kinds.bending import uniform_bending_report
+from strand.post import bending_stiffness_bounds
 from strand.run import run_case
 
 #: variant: (output folder, [contact] settings)

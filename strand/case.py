@@ -81,11 +81,21 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass, field, fields, replace
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields
 from pathlib import Path
+from typing import Any
 
 from .cable import Cable, CableError, cable_from_dict, cardinal, load_cable
-from .contact_settings import ContactSettings
+from .contact.element import ContactSettings
+from .settings import (
+    KIND_SECTIONS,
+    FatigueSettings,
+    LoadSettings,
+    MeshSettings,
+    OutputSettings,
+    StepSettings,
+)
 
 __all__ = [
     "Case",
@@ -105,82 +115,6 @@ BUILTIN_CABLES = {"cardinal": cardinal}
 
 class CaseError(ValueError):
     """A case file that cannot be used; the message names the file and the setting."""
-
-
-@dataclass(frozen=True)
-class MeshSettings:
-    length: float = 1.0  # m
-    h_max: float = 4e-3  # m
-
-
-LOAD_KINDS = ("saddle", "bending")
-
-
-@dataclass(frozen=True)
-class LoadSettings:
-    kind: str = "saddle"
-    tension: float = 40e3  # N
-    lateral: float = 4.3e3  # N
-    curvature: float = 0.5  # 1/m
-    cycle: tuple[float, ...] = (1.0, 0.0, -1.0, 0.0)
-    saddle_length: float = 0.02  # m
-    zone: float = 0.4  # m
-    direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
-    sweep: tuple[float, ...] = ()  # amplitudes (N or 1/m), each cycled from one tensioned state
-
-
-@dataclass(frozen=True)
-class StepSettings:
-    tension: float = 1e3  # N
-    lateral: float = 250.0  # N
-    lateral_max: float = 400.0  # N
-    curvature: float = 0.005  # 1/m
-    curvature_max: float = 0.05  # 1/m
-    growth: float = 1.5
-    cuts: int = 6
-    max_iterations: int = 12
-    stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
-    line_search: str = "cp"  # NewtonOptions.linesearch (docs/theory.md §6)
-    tolerance: float = 1e-2  # N
-    balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
-
-
-@dataclass(frozen=True)
-class OutputSettings:
-    folder: str = "results/cardinal"
-    fields: bool = True
-    vtx: bool = True
-    plots: bool = True
-    checkpoint: bool = True  # checkpoint.h5 (last converged state) and tensioned.h5
-
-
-@dataclass(frozen=True)
-class FatigueSettings:
-    outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
-    sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES) or "custom"
-    sn_A: float = 450.0  # MPa, custom: σ_a = A N^b up to the knee
-    sn_b: float = -0.2
-    sn_knee: float = 2e7  # cycles
-    sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
-    sn_b2: float = -0.17
-    sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
-    surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
-    clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
-
-    def curve(self):
-        """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
-        from .fatigue.sn import SN_CURVES, SNCurve
-
-        if self.sn_curve == "custom":
-            return SNCurve("custom (case file)", self.sn_A, self.sn_b, self.sn_knee, self.sn_A2,
-                           self.sn_b2, "the case file")  # fmt: skip
-        return SN_CURVES[self.sn_curve]
-
-    def layers(self, cable: Cable) -> list[int]:
-        """The layers (0 = core) whose wires the S–N curve applies to."""
-        if self.sn_layers:
-            return [int(i) for i in self.sn_layers]
-        return [i for i, lay in enumerate(cable.layers) if lay.wire.E < 100e9]
 
 
 @dataclass(frozen=True)
@@ -204,54 +138,67 @@ SECTIONS = {
     "fatigue": FatigueSettings,
 }
 
-#: settings that may be zero or negative (all other numbers must be positive)
-_SIGNED = {("load", "lateral"), ("load", "curvature"), ("fatigue", "sn_b"), ("fatigue", "sn_b2")}
+#: settings that may be zero or negative (all other numbers must be positive; a set-up kind
+#: names its own: ``SetupKind.signed``)
+_SIGNED = {("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 #: settings for which 0 means "off" (they must not be negative)
 _ZERO_IS_OFF = {("steps", "balance")}
 #: PETSc's line searches for Newton (``[steps] line_search``)
 LINE_SEARCHES = ("cp", "basic", "bt", "l2")
 
 
-def _value(section: str, key: str, value, default):
+def _boolean(where: str, value) -> bool:
+    if not isinstance(value, bool):
+        raise CaseError(f"{where}: expected true or false")
+    return value
+
+
+def _number(where: str, value, default, signed: bool, zero_is_off: bool):
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise CaseError(f"{where}: expected a number")
+    if isinstance(default, int) and not float(value).is_integer():
+        raise CaseError(f"{where}: expected a whole number")
+    if zero_is_off:
+        if value < 0:
+            raise CaseError(f"{where}: expected a positive number, or 0 for off")
+    elif not signed and not value > 0:
+        raise CaseError(f"{where}: expected a positive number")
+    return type(default)(value)
+
+
+def _numbers(where: str, key: str, value) -> tuple[float, ...]:
+    if not isinstance(value, list) or not all(
+        isinstance(v, int | float) and not isinstance(v, bool) for v in value
+    ):
+        raise CaseError(f"{where}: expected a list of numbers")
+    if key == "direction" and (len(value) != 3 or value[2] != 0 or value[:2] == [0, 0]):
+        raise CaseError(f"{where}: expected [x, y, 0], a direction across the strand axis")
+    if key == "cycle" and not value:
+        raise CaseError(f"{where}: expected at least one lateral target")
+    if key == "sweep" and not all(v > 0 for v in value):
+        raise CaseError(f"{where}: expected positive amplitudes (the cycle gives the signs)")
+    if key == "sweep" and len(set(value)) != len(value):
+        raise CaseError(f"{where}: an amplitude is listed twice")
+    return tuple(float(v) for v in value)
+
+
+def _value(section: str, key: str, value, default, signed: bool = False):
+    """``value`` of ``[section] key`` checked against the type of its ``default``."""
     where = f"[{section}] {key} = {value!r}"
     if isinstance(default, bool):
-        if not isinstance(value, bool):
-            raise CaseError(f"{where}: expected true or false")
-        return value
+        return _boolean(where, value)
     if isinstance(default, int | float):
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int | float)
-            or not math.isfinite(value)
-        ):
-            raise CaseError(f"{where}: expected a number")
-        if isinstance(default, int) and not float(value).is_integer():
-            raise CaseError(f"{where}: expected a whole number")
-        if (section, key) == ("load", "tension") and not value > 0:
+        tension = (section, key) == ("load", "tension")
+        signed = signed or tension or (section, key) in _SIGNED
+        number = _number(where, value, default, signed, (section, key) in _ZERO_IS_OFF)
+        if tension and not number > 0:
             raise CaseError(
                 f"{where}: expected a positive tension; a compressed strand is outside the "
                 "model (its wires buckle and its contact pairs open)"
             )
-        if (section, key) in _ZERO_IS_OFF:
-            if value < 0:
-                raise CaseError(f"{where}: expected a positive number, or 0 for off")
-        elif (section, key) not in _SIGNED and not value > 0:
-            raise CaseError(f"{where}: expected a positive number")
-        return type(default)(value)
+        return number
     if isinstance(default, tuple):
-        if not isinstance(value, list) or not all(
-            isinstance(v, int | float) and not isinstance(v, bool) for v in value
-        ):
-            raise CaseError(f"{where}: expected a list of numbers")
-        if key == "direction" and (len(value) != 3 or value[2] != 0 or value[:2] == [0, 0]):
-            raise CaseError(f"{where}: expected [x, y, 0], a direction across the strand axis")
-        if key == "cycle" and not value:
-            raise CaseError(f"{where}: expected at least one lateral target")
-        if key == "sweep" and not all(v > 0 for v in value):
-            raise CaseError(f"{where}: expected positive amplitudes (the cycle gives the signs)")
-        if key == "sweep" and len(set(value)) != len(value):
-            raise CaseError(f"{where}: an amplitude is listed twice")
-        return tuple(float(v) for v in value)
+        return _numbers(where, key, value)
     if isinstance(default, str):
         if not isinstance(value, str):
             raise CaseError(f"{where}: expected a string")
@@ -259,108 +206,128 @@ def _value(section: str, key: str, value, default):
     raise AssertionError(f"no rule for {section}.{key}")
 
 
+def _keys(name: str) -> dict[str, tuple[Any, bool]]:
+    """The settings of section ``name`` (with those of every registered set-up kind): each
+    key's default and whether it may be zero or negative."""
+    defaults = SECTIONS[name]()
+    keys = {f.name: (getattr(defaults, f.name), False) for f in fields(defaults)}
+    if name in KIND_SECTIONS:
+        from . import kinds
+
+        del keys["by_kind"]
+        for kind in kinds.registered():
+            own = getattr(kind, KIND_SECTIONS[name])()
+            for f in fields(own):
+                keys[f.name] = (getattr(own, f.name), name == "load" and f.name in kind.signed)
+    return keys
+
+
 def _section(name: str, table, source: str):
-    cls = SECTIONS[name]
     if not isinstance(table, dict):
         raise CaseError(f"{source}: [{name}] must be a table")
-    defaults = cls()
-    known = [f.name for f in fields(cls)]
-    unknown = sorted(set(table) - set(known))
+    keys = _keys(name)
+    unknown = sorted(set(table) - set(keys))
     if unknown:
         raise CaseError(
-            f"{source}: unknown setting(s) in [{name}]: {unknown}; allowed: {sorted(known)}"
+            f"{source}: unknown setting(s) in [{name}]: {unknown}; allowed: {sorted(keys)}"
         )
     values = {}
     for key, value in table.items():
-        default = getattr(defaults, key)
+        default, signed = keys[key]
         if name == "contact" and key == "normal":
             default = ""
         try:
-            values[key] = _value(name, key, value, default)
+            values[key] = _value(name, key, value, default, signed)
         except CaseError as e:
             raise CaseError(f"{source}: {e}") from None
+    cls = SECTIONS[name]
     try:
-        return replace(defaults, **values) if name != "contact" else cls(**values)
+        if name == "contact":  # its defaults depend on what is given (``ContactSettings``)
+            return cls(**values)
+        return cls().with_values(**values) if name in KIND_SECTIONS else cls(**values)
     except CableError as e:
         raise CaseError(f"{source}: [{name}] {e}") from None
 
 
-def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
-    allowed = ["cable", *SECTIONS]
-    unknown = sorted(set(data) - set(allowed))
-    if unknown:
-        raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: {allowed}")
-    spec = data.get("cable", "cardinal")
+def _cable(spec, base: Path | None, source: str) -> Cable:
     try:
         if isinstance(spec, str):
             if spec.lower() in BUILTIN_CABLES:
-                cable = BUILTIN_CABLES[spec.lower()]()
-            else:
-                cable = load_cable((base or Path.cwd()) / spec)
-        elif isinstance(spec, dict):
-            cable = cable_from_dict(spec)
-        else:
-            raise CaseError(f"{source}: 'cable' must be a name, a file or a table")
+                return BUILTIN_CABLES[spec.lower()]()
+            return load_cable((base or Path.cwd()) / spec)
+        if isinstance(spec, dict):
+            return cable_from_dict(spec)
+        raise CaseError(f"{source}: 'cable' must be a name, a file or a table")
     except CableError as e:
         raise CaseError(f"{source}: cable: {e}") from None
-    sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
-    steps = sections["steps"]
+
+
+def _in(source: str, check: Callable, *args) -> None:
+    """Run ``check(*args)``, its ``CaseError`` prefixed with the case's ``source``."""
+    try:
+        check(*args)
+    except CaseError as e:
+        raise CaseError(f"{source}: {e}") from None
+
+
+def _check_steps_and_load(case: Case) -> None:
+    from . import kinds
+
+    steps, load, mesh = case.steps, case.load, case.mesh
     if steps.line_search not in LINE_SEARCHES:
         raise CaseError(
-            f"{source}: [steps] line_search = {steps.line_search!r}: expected one of "
-            f"{list(LINE_SEARCHES)}"
+            f"[steps] line_search = {steps.line_search!r}: expected one of {list(LINE_SEARCHES)}"
         )
-    if steps.lateral > steps.lateral_max:
-        raise CaseError(f"{source}: [steps] lateral = {steps.lateral} exceeds lateral_max")
-    if steps.curvature > steps.curvature_max:
-        raise CaseError(f"{source}: [steps] curvature = {steps.curvature} exceeds curvature_max")
-    load, mesh = sections["load"], sections["mesh"]
-    length = mesh.length
-    if mesh.h_max >= length:
+    for kind in kinds.registered():  # every kind's own settings, whichever the case's
+        kind.check_settings(load.by_kind[kind.name], steps.by_kind[kind.name])
+    if mesh.h_max >= mesh.length:
         raise CaseError(
-            f"{source}: [mesh] h_max = {mesh.h_max} m must be shorter than the span "
-            f"[mesh] length = {length} m"
+            f"[mesh] h_max = {mesh.h_max} m must be shorter than the span [mesh] length = "
+            f"{mesh.length} m"
         )
-    if load.kind not in LOAD_KINDS:
-        raise CaseError(
-            f"{source}: [load] kind = {load.kind!r} is unknown; choose {' or '.join(LOAD_KINDS)}"
-        )
-    if load.kind == "saddle" and not mesh.h_max <= load.saddle_length < length:
-        raise CaseError(
-            f"{source}: [load] saddle_length = {load.saddle_length} m must be shorter than the "
-            f"span ([mesh] length = {length} m) and at least [mesh] h_max = {mesh.h_max} m (so "
-            "that every outer wire has a node under the saddle)"
-        )
-    if load.kind == "bending" and load.zone >= length:
-        raise CaseError(
-            f"{source}: [load] zone = {load.zone} m must be shorter than [mesh] length = {length} m"
-        )
+    kinds.kind_of(case).check_case(case)
     if load.sweep and not any(load.cycle):
         raise CaseError(
-            f"{source}: [load] sweep = {list(load.sweep)} needs a cycle with a target other "
-            f"than 0 (cycle = {list(load.cycle)} stays at zero load)"
+            f"[load] sweep = {list(load.sweep)} needs a cycle with a target other than 0 "
+            f"(cycle = {list(load.cycle)} stays at zero load)"
         )
-    fatigue = sections["fatigue"]
+
+
+def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
     from .fatigue.sn import SN_CURVES
 
     if fatigue.sn_curve not in (*SN_CURVES, "custom"):
         raise CaseError(
-            f"{source}: [fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
+            f"[fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
             f'{sorted(SN_CURVES)} or "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2)'
         )
     try:
         fatigue.curve()
     except ValueError as e:
-        raise CaseError(f"{source}: [fatigue] {e}") from None
+        raise CaseError(f"[fatigue] {e}") from None
     bad = [
         i for i in fatigue.sn_layers if not float(i).is_integer() or not 0 <= i < len(cable.layers)
     ]
     if bad:
         raise CaseError(
-            f"{source}: [fatigue] sn_layers = {list(fatigue.sn_layers)}: layers are numbered 0 "
-            f"(core) to {len(cable.layers) - 1}"
+            f"[fatigue] sn_layers = {list(fatigue.sn_layers)}: layers are numbered 0 (core) to "
+            f"{len(cable.layers) - 1}"
         )
-    return Case(cable, **sections, source=source)
+
+
+def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
+    """The case of ``data`` (a case file's tables; relative cable files from ``base``), every
+    setting checked (``CaseError`` naming ``source`` and the setting)."""
+    allowed = ["cable", *SECTIONS]
+    unknown = sorted(set(data) - set(allowed))
+    if unknown:
+        raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: {allowed}")
+    cable = _cable(data.get("cable", "cardinal"), base, source)
+    sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
+    case = Case(cable, **sections, source=source)
+    _in(source, _check_steps_and_load, case)
+    _in(source, _check_fatigue, case.fatigue, cable)
+    return case
 
 
 def parse_settings(items: list[str]) -> dict:

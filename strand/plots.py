@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["offscreen_plotter", "tubes"]
+__all__ = ["offscreen_plotter", "tubes", "save_figure"]
 
 
 def offscreen_plotter(**kwargs):
@@ -136,14 +136,15 @@ def strand_picture(geometry, path, step: float = 0.03, section_z: float | None =
 def results_figures(case, result, problem) -> list[Path]:
     """The run's figures (PNG) in ``result.folder``: axial force along z per layer and sector at
     the largest load (the seed paper's Fig. 3), its change from the tensioned state (Fig. 4), the
-    load–deflection loop (Fig. 5), moment–curvature with the EI bounds, and the deformed strand
-    coloured by axial force. Figures whose data the run did not reach are skipped."""
+    set-up kind's own (``SetupKind.figures``; the saddle test's load–deflection loop, Fig. 5),
+    and the deformed strand coloured by axial force. Figures whose data the run did not reach
+    are skipped."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .post import bending_stiffness_bounds, sector_of
+    from .post import sector_of
 
     folder = Path(result.folder)
     paths = []
@@ -154,7 +155,7 @@ def results_figures(case, result, problem) -> list[Path]:
     note = incomplete_note(result)
 
     def save_fig(fig, name, tight=True):
-        paths.append(_save_figure(fig, folder / name, note, tight))
+        paths.append(save_figure(fig, folder / name, note, tight))
 
     peak, base = result.peak, result.tensioned
     P_peak = result.peak_step.load if result.peak_step is not None else 0.0
@@ -195,37 +196,9 @@ def results_figures(case, result, problem) -> list[Path]:
         )
         save_fig(fig, "axial_force_change.png", tight=False)
 
-    if case.load.kind == "bending":
-        paths.append(bending_figure(case, folder, note))
-    lateral = result.cycle_steps if case.load.kind == "saddle" else []
-    if lateral:
-        fig, ax = plt.subplots(figsize=(6, 4.5))
-        P = [0.0] + [s.state.lateral / 1e3 for s in lateral]
-        d = [0.0] + [1e3 * s.state.deflection for s in lateral]
-        ax.plot(d, P, "o-", ms=3, label="model")
-        for rule, style in (("cumulative", "--"), ("own_tension", ":")):
-            ax.plot(1e3 * np.r_[0.0, result.beam_reference[rule]], P, style, color="k",
-                    label=f"beam, stick–slip law ({rule.replace('_', ' ')}, Masing)")  # fmt: skip
-        ax.legend(fontsize=8)
-        ax.set_xlabel("midspan deflection (mm)")
-        ax.set_ylabel("lateral load P (kN)")
-        ax.grid(alpha=0.3)
-        ax.set_title(f"load–deflection, T = {case.load.tension / 1e3:g} kN")
-        save_fig(fig, "load_deflection.png")
+    from .kinds import kind_of
 
-        mk = np.loadtxt(folder / "moment_curvature.csv", delimiter=",", skiprows=1, ndmin=2)
-        ei_min, ei_max = bending_stiffness_bounds(case.cable)
-        fig, ax = plt.subplots(figsize=(6, 4.5))
-        ax.plot(np.r_[0, mk[:, 2]], np.r_[0, mk[:, 3]], "o-", ms=3, label="model, midspan")
-        k = np.linspace(0, np.abs(mk[:, 2]).max(), 2)
-        ax.plot(k, ei_max * k, "--", label=f"EI_max = {ei_max:.0f} N m²")
-        ax.plot(k, ei_min * k, ":", label=f"EI_min = {ei_min:.1f} N m²")
-        ax.set_ylim(1.2 * min(mk[:, 3].min(), 0), 1.2 * max(mk[:, 3].max(), 0) + 1e-9)
-        ax.set_xlabel("curvature κ (1/m)")
-        ax.set_ylabel("bending moment M (N m)")
-        ax.legend()
-        ax.grid(alpha=0.3)
-        save_fig(fig, "moment_curvature.png")
+    paths += kind_of(case).figures(case, result, note)
 
     if peak is not None and result.peak_w is not None:
         paths.append(deformed_picture(case, result, problem, folder / "deformed_axial_force.png",
@@ -233,7 +206,7 @@ def results_figures(case, result, problem) -> list[Path]:
     return paths
 
 
-def _save_figure(fig, path: Path, note: str = "", tight: bool = True) -> Path:
+def save_figure(fig, path: Path, note: str = "", tight: bool = True) -> Path:
     """Lay out ``fig`` (``tight``: tight layout; else its own engine, e.g. constrained for a
     colour bar shared by several axes), with ``note`` in red along the bottom; save and close."""
     import matplotlib.pyplot as plt
@@ -298,52 +271,6 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     return save(plotter, path)
 
 
-def bending_figure(case, folder, note: str = "") -> Path:
-    """``moment_curvature.png`` of the uniform bending test: the zone's M–κ loop, the section
-    moments and end reactions (uniformity), the EI bounds, and the stick–slip law (virgin curve and
-    Masing loop on the measured curvature path, for both friction rules). ``note``: a line in red
-    at the bottom (an incomplete run)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .analytical import StickSlipLaw, masing
-    from .post import read_table
-
-    folder = Path(folder)
-    mk = read_table(folder / "moment_curvature.csv")
-    k = np.r_[0.0, mk["curvature_1_per_m"]]
-    M = np.r_[0.0, mk["moment_zone_middle_Nm"]]
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [3, 2]})
-    ax.plot(k, M, "o-", ms=3, color="k", label="strand (mid-zone section)")
-    span = np.abs(k).max() or 1.0
-    for rule, style in (("cumulative", "-"), ("own_tension", "--")):
-        law = StickSlipLaw(case.cable, case.load.tension, rule)
-        ax.plot(k, masing(law.moment, k), style, lw=1.2,
-                label=f"stick–slip law, {rule.replace('_', ' ')} (Masing)")  # fmt: skip
-        ei_min, ei_max = law.ei_min, law.ei_max
-    line = np.array([-span, span])
-    ax.plot(line, ei_max * line, ":", color="tab:red", label=f"EI_max = {ei_max:.0f} N m²")
-    ax.plot(line, ei_min * line, ":", color="tab:blue", label=f"EI_min = {ei_min:.1f} N m²")
-    ax.set_ylim(1.3 * min(M.min(), 0) - 1e-9, 1.3 * max(M.max(), 0) + 1e-9)
-    ax.set_xlabel("zone curvature κ (1/m)")
-    ax.set_ylabel("bending moment M (N m)")
-    ax.set_title(f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN: uniform bending")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    cols = [c for c in mk if c.startswith("moment_")]
-    for c in cols:
-        ax2.plot(mk["step"], mk[c] - mk["moment_zone_middle_Nm"], ".", ms=4,
-                 label=c.removeprefix("moment_").removesuffix("_Nm").replace("_", " "))  # fmt: skip
-    ax2.set_xlabel("step")
-    ax2.set_ylabel("M − M(mid-zone) (N m)")
-    ax2.set_title("uniformity: five sections of the zone, end reactions")
-    ax2.grid(alpha=0.3)
-    ax2.legend(fontsize=7)
-    return _save_figure(fig, folder / "moment_curvature.png", note)
-
-
 def fatigue_figures(folder, report) -> list[Path]:
     """The fatigue report's figures in ``folder``: a fretting map per interface (initial z against
     the angle about the axis, colour = Ruiz's F₂ of the worst cycle, grey where the pair stuck
@@ -378,7 +305,7 @@ def fatigue_figures(folder, report) -> list[Path]:
     if norm is not None:
         fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
     fig.suptitle("fretting map: pairs that slid, coloured by F₂ (grey: stuck throughout)")
-    paths = [_save_figure(fig, folder / "fretting_map.png", None, False)]
+    paths = [save_figure(fig, folder / "fretting_map.png", None, False)]
 
     s, e = read_history(folder / "wire_sections.h5").static, report.elements
     outer = s["layer"] == s["layer"].max()
@@ -402,5 +329,5 @@ def fatigue_figures(folder, report) -> list[Path]:
         title="outer wires: surface stress range over the history (one line per wire)",
     )
     ax.grid(alpha=0.3)
-    paths.append(_save_figure(fig, folder / "stress_range.png", None, True))
+    paths.append(save_figure(fig, folder / "stress_range.png", None, True))
     return paths

@@ -1,5 +1,5 @@
 """A strand problem: the model (wires and contact), a test set-up (supports, loads, measures) and
-the Newton solver that ties them together.
+the nonlinear problem (``strand.solver.NonlinearProblem``) that ties them together.
 
 ``StrandProblem(geometry, contact, options)`` is the seed paper's saddle test; pass ``setup`` (a
 callable taking the ``StrandModel``, e.g. ``functools.partial(UniformBendingTest, zone=0.4)``) for
@@ -15,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 from mpi4py import MPI
 
-from .contact_settings import ContactSettings
+from .contact.element import ContactSettings
 from .geometry import StrandGeometry
 from .model import StrandModel
 from .setups.base import TestSetup
@@ -28,7 +28,8 @@ Array = npt.NDArray[np.float64]
 
 
 class StrandProblem:
-    """The strand of ``geometry`` in the test ``setup``, with its Newton solver.
+    """The strand of ``geometry`` in the test ``setup``; ``solver`` is its ``NonlinearProblem``
+    (whose ``solver`` in turn is the SNES).
 
     Args:
         geometry: the strand (``build_geometry``).
@@ -58,6 +59,7 @@ class StrandProblem:
             mumps["mat_mumps_icntl_14"] = 100
         options = options or NewtonOptions()
         options = replace(options, petsc={**mumps, **options.petsc})
+        # ``NewtonSolver`` (a ``NonlinearProblem``) for its ``snes``, which callers still read
         self.solver = NewtonSolver(
             self.model.beam.residual(),
             self.model.w,

@@ -21,7 +21,6 @@ import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +29,7 @@ from .case import Case
 from .checkpoint import CheckpointError, read_checkpoint, restore
 from .folder import RUN_MARKER, FolderError, prepare_results_folder
 from .geometry import LINE, build_geometry
+from .kinds import kind_of
 from .parallel import is_root, on_root, root_stream
 from .post import (
     CellEvaluator,
@@ -37,10 +37,9 @@ from .post import (
     bending_stiffness_bounds,
     cell_results,
     fibre_model,
-    saddle_beam_reference,
 )
 from .problem import StrandProblem
-from .programme import LoadProgramme, Position, Stage, cycle_stages, run_programme
+from .programme import LoadProgramme, Position, Stage, run_programme
 from .recorders import (
     AxialForceTable,
     BendingTable,
@@ -55,8 +54,6 @@ from .recorders import (
     StepTable,
     WireSectionHistory,
 )
-from .setups.bending import UniformBendingTest
-from .setups.saddle import SaddleTest
 from .solver import (
     Interrupt,
     LoadStepFailure,
@@ -65,7 +62,7 @@ from .solver import (
     StepRecord,
 )
 
-__all__ = ["RunResult", "run_case", "summarize", "tension_then_cycle", "setup_and_programme"]
+__all__ = ["RunResult", "run_case", "run_sweep", "summarize", "setup_and_programme"]
 
 
 @dataclass
@@ -76,8 +73,8 @@ class RunResult:
     steps: list[RunStep] = field(default_factory=list)
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: dict | None = None  # contact pair results there (``pair_results``)
-    #: saddle runs: the analytical beam's deflections (m) at every cycle step, per friction rule
-    beam_reference: dict | None = None
+    #: what the set-up kind's analytical reference predicts for the run (``SetupKind.reference``)
+    reference: object | None = None
     peak: CellResults | None = None  # at the largest abs(cycle load) reached
     peak_w: object | None = None  # nodal unknowns at that state
     failure: str = ""  # why the run stopped early ("" if it did not)
@@ -91,7 +88,7 @@ class RunResult:
     #: wall time (s) of each recorder over the run, by class name (the first to ask for the
     #: step's cell results, the axial force table, is charged with evaluating them)
     output_timings: dict = field(default_factory=dict)
-    cycle_parameter: str = "lateral"
+    cycle_parameter: str = ""
     #: the state kept in memory at the steps ``run_programme_with_outputs(keep=)`` chose
     kept: object | None = None
 
@@ -152,31 +149,17 @@ def _settings_text(case: Case) -> str:
     lines = [f"case: {case.source}", f"cable: {case.cable.name}"]
     for name in ("mesh", "contact", "load", "steps", "output"):
         lines.append(f"[{name}]")
-        for k, v in vars(getattr(case, name)).items():
+        section = getattr(case, name)
+        items = section.items() if name in ("load", "steps") else vars(section).items()
+        for k, v in items:
             lines.append(f"{k} = {v!r}")
     return "\n".join(lines) + "\n"
 
 
-def tension_then_cycle(case: Case, parameter: str) -> LoadProgramme:
-    """Tension to ``load.tension``, then the legs ``load.cycle`` × the amplitude of
-    ``parameter`` ("lateral" or "curvature"), with that parameter's step settings."""
-    steps, load = case.steps, case.load
-    tension = Stage("tension", "tension", load.tension, steps.tension,
-                    steps.tension / 2**steps.cuts, growth=steps.growth)  # fmt: skip
-    first, largest = getattr(steps, parameter), getattr(steps, f"{parameter}_max")
-    legs = cycle_stages(parameter, getattr(load, parameter), load.cycle, first, largest,
-                        steps.cuts, steps.growth)  # fmt: skip
-    return LoadProgramme((tension, *legs), parameter)
-
-
 def setup_and_programme(case: Case):
     """The test set-up factory (taking the model) and the load programme of ``case``."""
-    load = case.load
-    if load.kind == "bending":
-        setup = partial(UniformBendingTest, zone=load.zone, direction=load.direction)
-        return setup, tension_then_cycle(case, "curvature")
-    setup = partial(SaddleTest, saddle_length=load.saddle_length, direction=load.direction)
-    return setup, tension_then_cycle(case, "lateral")
+    kind = kind_of(case)
+    return kind.setup(case), kind.programme(case)
 
 
 def run_case(
@@ -212,8 +195,6 @@ def run_sweep(
     the tension once, into ``folder``/tension, then each amplitude restored from that state
     into ``folder``/<parameter>_<amplitude>, each with all its outputs (its first row is the
     tensioned state); ``sweep.csv`` and ``sweep.txt`` in ``folder`` compare them."""
-    from dataclasses import replace
-
     stream = root_stream(stream or sys.stdout)
     t0 = time.perf_counter()
     folder = Path(folder or case.output.folder)
@@ -237,7 +218,7 @@ def run_sweep(
             return [tensioned]
         state, last = tensioned.kept, tensioned.steps[-1]
         for amplitude, name in names.items():
-            member = replace(case, load=replace(case.load, **{parameter: amplitude}))
+            member = kind_of(case).with_amplitude(case, amplitude)
             _, member_programme = setup_and_programme(member)
             print(f"--- sweep: {parameter} amplitude {amplitude:g} ---", file=stream, flush=True)
             restore(problem, state)
@@ -251,7 +232,7 @@ def run_sweep(
                 break
     finally:
         problem.solver.destroy()
-    table = sweep_table(case, parameter, results)
+    table = sweep_table(case, parameter, problem.setup.units[parameter], results)
     if is_root():
         (top / "sweep.csv").write_text(table.csv)
         (top / "sweep.txt").write_text(
@@ -287,12 +268,11 @@ class SweepTable:
     csv: str
 
 
-def sweep_table(case: Case, parameter: str, results: list[RunResult]) -> SweepTable:
-    """One row per amplitude: its effort and what the set-up measured at the peak and back at
-    zero load."""
-    unit = "N" if parameter == "lateral" else "1_per_m"
+def sweep_table(case: Case, parameter: str, unit: str, results: list[RunResult]) -> SweepTable:
+    """One row per amplitude (of ``parameter``, in ``unit`` as in column names): its effort and
+    what the set-up measured at the peak and back at zero load (the kind's ``measure``)."""
     head = [f"amplitude_{unit}", "steps", "iterations", "cuts", "seconds"]
-    measure = "deflection" if case.load.kind == "saddle" else "curvature"
+    measure = kind_of(case).measure
     head += [f"peak_{measure}", f"unloaded_{measure}", "outcome"]
     rows = []
     for r in results:
@@ -445,10 +425,10 @@ def run_programme_with_outputs(
     if case.output.checkpoint:
         recorders.append(CheckpointRecorder(folder))
     result.setup_seconds = time.perf_counter() - t_start
+    kind = kind_of(case)
     progress = _Progress(
-        programme, {"tension": ("kN", 1e3), "lateral": ("kN", 1e3), "curvature": ("1/m", 1.0)},
-        stream,
-    )  # fmt: skip
+        programme, {"tension": ("kN", 1e3), kind.parameter: kind.progress_unit}, stream
+    )
     output_seconds = 0.0
 
     def record(step: RunStep, position: Position) -> StepContext:
@@ -511,11 +491,7 @@ def run_programme_with_outputs(
         key_states.peak_w,
     )
     result.tensioned_pairs = key_states.tensioned_pairs
-    if case.load.kind == "saddle" and result.cycle_steps:
-        loads = [s.state.lateral for s in result.cycle_steps]
-        result.beam_reference = saddle_beam_reference(
-            case.cable, case.mesh.length, case.load.tension, loads
-        )
+    result.reference = kind.reference(case, result)
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=output_seconds)
     summary = summarize(case, result, problem)
@@ -551,7 +527,7 @@ def run_fatigue_report(case: Case, result: RunResult, recording: float, stream):
     try:
         report = fatigue_report(
             result.folder, case.cable, case.load.tension, case.fatigue, case.load.direction,
-            clamp=case.load.kind == "saddle",
+            clamp=kind_of(case).clamp,
         )  # fmt: skip
     except ReportError as e:
         print(f"strand: no fatigue report: {e}", file=stream, flush=True)
@@ -600,22 +576,7 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
                 f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
             )
         lines.append(contact_force_line(problem.model.geometry, result.tensioned_pairs))
-    peak = result.peak_step
-    if case.load.kind == "bending":
-        lines += bending_lines(case, result)
-    elif peak is not None:
-        lines.append(
-            f"largest lateral load {peak.load / 1e3:.2f} kN: midspan deflection "
-            f"{1e3 * peak.state.deflection:.2f} mm, end displacement "
-            f"{1e3 * peak.state.end_displacement:.3f} mm"
-        )
-        zero = result.unloaded_steps
-        if zero:
-            lines.append(
-                "back at P = 0: deflection "
-                + ", ".join(f"{1e3 * s.state.deflection:+.2f} mm" for s in zero)
-            )
-        lines += saddle_beam_lines(case, result)
+    lines += kind_of(case).summary_lines(case, result)
     ei_min, ei_max = bending_stiffness_bounds(case.cable)
     lines.append(f"bending stiffness bounds: EI_min {ei_min:.1f} N m², EI_max {ei_max:.0f} N m²")
     for w in result.warnings:
@@ -623,57 +584,6 @@ def summarize(case: Case, result: RunResult, problem: StrandProblem) -> str:
     if result.failure:
         lines.append(f"{'stopped' if result.interrupted else 'failure'}: {result.failure}")
     return "\n".join(lines) + "\n"
-
-
-def bending_lines(case: Case, result: RunResult) -> list[str]:
-    """The uniform bending test's summary lines, beside the stick–slip law."""
-    from .post import uniform_bending_report
-
-    r = uniform_bending_report(case.cable, case.load.tension, result.folder)
-    if not r:
-        return []
-    lines = [
-        f"uniform bending, zone {case.load.zone:g} m: section moments uniform within "
-        f"{100 * r['uniformity']:.2f} %, end reactions within {100 * r['reaction_error']:.2f} %",
-        f"first step M/κ = {r['initial_slope']:.0f} N m² = {r['initial_slope'] / r['ei_max']:.2f} "
-        f"EI_max ({r['ei_max']:.0f}) = {r['initial_slope'] / r['ei_min']:.1f} EI_min "
-        f"({r['ei_min']:.1f})",
-        "  κ (1/m)   M model (N m)   stick–slip law: cumulative  own tension",
-    ]
-    for kappa, m, cum, own in r["table"]:
-        lines.append(f"  {kappa:7.3f}   {m:13.2f}   {cum:26.2f}  {own:11.2f}")
-    if "loop_area" in r:
-        ma = r["masing_area"]
-        lines.append(
-            f"loop area {r['loop_area']:.2f} J/m; Masing on the same κ path: "
-            f"{ma['cumulative']:.2f} (cumulative), {ma['own_tension']:.2f} (own tension)"
-        )
-    law = r["slip_onset_law"]
-    lines.append("slip onset (10 % of the layer's inner pairs in the zone), κ (1/m):")
-    for i, k in enumerate(r["slip_onset"], start=1):
-        lines.append(
-            f"  layer {i}: model {k:.4f}   κ_b cumulative {law['cumulative'][i - 1]:.4f}, "
-            f"own tension {law['own_tension'][i - 1]:.4f}"
-        )
-    return lines
-
-
-def saddle_beam_lines(case: Case, result: RunResult) -> list[str]:
-    """The saddle test's deflections beside the tensioned beam with the stick–slip law."""
-    steps = result.cycle_steps
-    loads = np.array([s.state.lateral for s in steps])
-    ref = result.beam_reference
-    peak = int(np.argmax(np.abs(loads)))
-    lines = ["tensioned beam with the stick–slip law (clamped–clamped, Masing), deflection (mm):",
-             "  P (kN)   model   law: cumulative  own tension"]  # fmt: skip
-    shown = {peak} | {j for j, s in enumerate(steps) if s in result.unloaded_steps}
-    shown |= {int(np.argmin(np.abs(loads[: peak + 1] - f * loads[peak]))) for f in (0.25, 0.5)}
-    for j in sorted(shown):
-        lines.append(
-            f"  {loads[j] / 1e3:6.2f}  {1e3 * steps[j].state.deflection:6.2f}  "
-            f"{1e3 * ref['cumulative'][j]:16.2f}  {1e3 * ref['own_tension'][j]:11.2f}"
-        )
-    return lines
 
 
 def contact_force_line(geometry, pairs: dict) -> str:

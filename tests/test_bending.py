@@ -19,13 +19,10 @@ from strand.analytical import (
 )
 from strand.cable import cardinal
 from strand.case import CaseError, case_from_dict
-from strand.contact_settings import ContactSettings
+from strand.contact.element import ContactSettings
 from strand.geometry import build_geometry
-from strand.post import (
-    bending_stiffness_bounds,
-    cell_results,
-    saddle_beam_reference,
-)
+from strand.kinds.saddle import saddle_beam_reference
+from strand.post import bending_stiffness_bounds, cell_results
 from strand.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepper, NewtonOptions

@@ -1,7 +1,9 @@
-"""Newton solver machinery: pair terms outside UFL, nodal loads, step cutting, history rollback."""
+"""strand's NonlinearProblem (dolfinx's, with pair terms outside UFL and strand's convergence tests),
+nodal loads, step cutting, history rollback."""
 
 from dataclasses import replace
 
+import dolfinx.fem.petsc
 import numpy as np
 import pytest
 from dolfinx import fem
@@ -10,7 +12,7 @@ from mpi4py import MPI
 from beam_cases import cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, input_to_block, polyline_mesh
-from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad
+from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NodalLoad, NonlinearProblem
 
 S = section_stiffness()
 
@@ -66,7 +68,7 @@ def test_pair_term_couples_two_bars_exactly():
     k, F = 3.0e8, 5.0e3
     spring = AxialSpring([tips], k)
     load = NodalLoad([tips[0]], [[F, 0, 0, 0, 0, 0]], factor=1.0)
-    solver = NewtonSolver(beam.residual(), w, [bc], terms=[spring, load])
+    solver = NonlinearProblem(beam.residual(), w, [bc], terms=[spring, load])
     result = solver.solve()
     assert result.converged and result.iterations <= 2
     kb = S["EA"] / 1.0
@@ -83,7 +85,7 @@ def test_pair_terms_on_clamped_dofs_are_masked():
     beam = ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
     bc = fem.dirichletbc(np.zeros(6), roots, V)
     k, F = 1.0e8, 2.0e3
-    solver = NewtonSolver(
+    solver = NonlinearProblem(
         beam.residual(),
         w,
         [bc],
@@ -172,7 +174,7 @@ def spring_to_ground(scale, options):
         MisjudgedSpring([[tips[0], roots[1]]], 1e10, scale),
         NodalLoad([tips[0]], [[1e3, 0, 0, 0, 0, 0]], 1.0),
     ]
-    return NewtonSolver(beam.residual(), w, [bc], terms=terms, options=options)
+    return NonlinearProblem(beam.residual(), w, [bc], terms=terms, options=options)
 
 
 def test_stall_test_stops_a_stagnating_solve_early():
@@ -227,7 +229,7 @@ def saturating_tip(options):
         SaturatingSpring(tips[0], 1e3, 1e-6, c),
         NodalLoad([tips[0]], [[S["EA"] * c, 0, 0, 0, 0, 0]], 1.0),
     ]
-    return NewtonSolver(beam.residual(), w, [bc], terms=terms, options=options), tips[0]
+    return NonlinearProblem(beam.residual(), w, [bc], terms=terms, options=options), tips[0]
 
 
 def test_line_search_breaks_the_two_cycle_of_full_newton_steps():
@@ -325,7 +327,7 @@ def test_a_failed_factorisation_does_not_poison_the_next_solve():
         return f, K * np.nan
 
     load = NodalLoad([tips[0]], [[5e3, 0, 0, 0, 0, 0]], factor=1.0)
-    solver = NewtonSolver(beam.residual(), w, [bc], terms=[spring, load])
+    solver = NonlinearProblem(beam.residual(), w, [bc], terms=[spring, load])
     spring.evaluate = poisoned
     failed = solver.solve()
     assert not failed.converged and failed.reason == "DIVERGED_LINEAR_SOLVE"
@@ -335,19 +337,51 @@ def test_a_failed_factorisation_does_not_poison_the_next_solve():
     assert result.converged and result.iterations <= 2
 
 
-def test_each_solver_has_its_own_petsc_options_and_removes_them():
-    """Two solvers in one process: the second does not inherit the first one's extra options,
-    and ``destroy`` leaves no option of a solver in PETSc's database (none reported unused)."""
+def test_each_problem_has_its_own_petsc_options_and_removes_them():
+    """Two problems in one process: the second does not inherit the first one's extra options,
+    and ``destroy`` leaves no option of a problem in PETSc's database (none reported unused)."""
     from petsc4py import PETSc
 
     opts = PETSc.Options()
     first = cantilever(4, options=NewtonOptions(petsc={"mat_mumps_icntl_14": 80})).solver
     second = cantilever(4).solver
-    assert first.prefix != second.prefix
-    assert opts.getInt(f"{first.prefix}mat_mumps_icntl_14") == 80
-    assert not opts.hasName(f"{second.prefix}mat_mumps_icntl_14")
-    assert second.snes.getKSP().getPC().getType() == "lu"
+    prefixes = (first.solver.getOptionsPrefix(), second.solver.getOptionsPrefix())
+    assert prefixes[0] != prefixes[1]
+    assert opts.getInt(f"{prefixes[0]}mat_mumps_icntl_14") == 80
+    assert not opts.hasName(f"{prefixes[1]}mat_mumps_icntl_14")
+    assert second.solver.getKSP().getPC().getType() == "lu"
     first.destroy()
     second.destroy()
-    left = [k for k in opts.getAll() if k.startswith((first.prefix, second.prefix))]
+    left = [k for k in opts.getAll() if k.startswith(prefixes)]
     assert left == []
+
+
+def test_the_problem_is_dolfinx_nonlinear_problem_with_pair_couplings():
+    """dolfinx's conventions hold: ``petsc_options_prefix`` names the SNES (``solver``) and, after
+    it, A, b and x; ``petsc_options`` override those of ``NewtonOptions`` and reach MUMPS at its
+    first factorisation; the Jacobian ``A`` holds the spring's coupling of the two bar tips,
+    −k (N/m), outside the forms' sparsity pattern; an empty prefix is refused, as by dolfinx."""
+    mesh, V, roots, tips = two_bars()
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
+    bc = fem.dirichletbc(np.zeros(6), roots, V)
+    k = 3.0e8
+    terms = [AxialSpring([tips], k), NodalLoad([tips[0]], [[5e3, 0, 0, 0, 0, 0]], factor=1.0)]
+    petsc_options = {"mat_mumps_icntl_14": 77, "snes_max_it": 3}
+    problem = NonlinearProblem(
+        beam.residual(), w, [bc], terms=terms, options=NewtonOptions(max_it=25),
+        petsc_options_prefix="bars_", petsc_options=petsc_options,
+    )  # fmt: skip
+    assert isinstance(problem, dolfinx.fem.petsc.NonlinearProblem) and problem.u is w
+    assert problem.solver.getOptionsPrefix() == "bars_"
+    assert [o.getOptionsPrefix() for o in (problem.A, problem.b, problem.x)] == [
+        "bars_A_", "bars_b_", "bars_x_",
+    ]  # fmt: skip
+    assert problem.solver.getTolerances()[3] == 3  # max_it, over NewtonOptions' 25
+    assert problem.solve().converged
+    assert problem.solver.getKSP().getPC().getFactorMatrix().getMumpsIcntl(14) == 77
+    rows = problem.A.getLGMap()[0].apply(6 * np.asarray(tips))
+    assert problem.A.getValue(rows[0], rows[1]) == pytest.approx(-k)
+    problem.destroy()
+    with pytest.raises(ValueError, match="prefix cannot be empty"):
+        NonlinearProblem(beam.residual(), w, [bc], petsc_options_prefix="")

@@ -1,13 +1,10 @@
-"""Beam-to-beam contact: laws, kinematics, pair groups and their builders from mesh nodes.
+"""Beam-to-beam contact on fixed node pairs (small sliding): laws, kinematics, assembly.
 
-The public API puts any beams of a dolfinx mesh in contact, at small sliding
-(``strand.contact.pairs``) or large sliding (``strand.contact.windows``):
+The public API puts any beams of a dolfinx mesh in contact (``strand.contact.pairs``):
 
 >>> from strand.contact import candidate_pairs, contact_terms, PenaltyLaw, ElasticSlip
 """
 
-from .element import resolve_normal
-from .errors import ContactError
 from .laws import (
     ElasticSlip,
     FrictionLaw,
@@ -18,25 +15,27 @@ from .laws import (
     PenaltyLaw,
     hertz_mindlin,
 )
-from .nodes import BeamNodes, beam_nodes, locate_nodes
-from .pairs import NodePairs, candidate_pairs, contact_terms, hertz_laws, node_pairs
-from .sliding import SlidingGroup, SlidingWindowError
-from .windows import NodeChains, sliding_terms
+from .pairs import (
+    BeamNodes,
+    NodePairs,
+    beam_nodes,
+    candidate_pairs,
+    contact_terms,
+    hertz_laws,
+    locate_nodes,
+    node_pairs,
+)
 
 __all__ = [
     "BeamNodes",
-    "ContactError",
     "ElasticSlip",
     "FrictionLaw",
     "HertzLineLaw",
     "HertzPointLaw",
     "Mindlin",
-    "NodeChains",
     "NodePairs",
     "NormalLaw",
     "PenaltyLaw",
-    "SlidingGroup",
-    "SlidingWindowError",
     "beam_nodes",
     "candidate_pairs",
     "contact_terms",
@@ -44,6 +43,4 @@ __all__ = [
     "hertz_mindlin",
     "locate_nodes",
     "node_pairs",
-    "resolve_normal",
-    "sliding_terms",
 ]

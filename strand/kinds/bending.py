@@ -1,0 +1,207 @@
+"""Uniform bending as a set-up kind (``[load] kind = "bending"``): the strand under tension, bent
+by end rotations (``strand.setups.bending.UniformBendingTest``): the section's moment–curvature.
+
+Its own settings: ``[load] curvature`` (1/m, the nominal curvature amplitude) and ``zone`` (m, the
+central measuring zone), ``[steps] curvature`` and ``curvature_max`` (1/m). Its reference: the
+stick–slip law (``analytical.StickSlipLaw``, virgin curve and Masing loops); its figure: the
+zone's M–κ loop with the section moments' uniformity. Units: m, N, N m, 1/m.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+
+from ..cable import Cable
+from ..case import Case, CaseError
+from . import SetupKind
+
+__all__ = ["UniformBending", "BendingLoad", "BendingSteps", "uniform_bending_report"]
+
+
+@dataclass(frozen=True)
+class BendingLoad:
+    """``[load]`` settings of the uniform bending test."""
+
+    curvature: float = 0.5  # 1/m, nominal curvature amplitude
+    zone: float = 0.4  # m, central zone where the curvature is measured
+
+
+@dataclass(frozen=True)
+class BendingSteps:
+    """``[steps]`` settings of the uniform bending test."""
+
+    curvature: float = 0.005  # 1/m, first curvature increment of each leg
+    curvature_max: float = 0.05  # 1/m, largest curvature increment
+
+
+class UniformBending(SetupKind):
+    """Uniform bending by end rotations: tension, then the nominal curvature's cycle."""
+
+    name = "bending"
+    parameter = "curvature"
+    unit = "1/m"
+    progress_unit = ("1/m", 1.0)
+    measure = "curvature"
+    load_settings = BendingLoad
+    step_settings = BendingSteps
+    signed = frozenset({"curvature"})
+    clamp = False
+
+    def check_case(self, case: Case) -> None:
+        zone, length = self.load(case).zone, case.mesh.length
+        if zone >= length:
+            raise CaseError(
+                f"[load] zone = {zone} m must be shorter than [mesh] length = {length} m"
+            )
+
+    def setup(self, case: Case):
+        from ..setups.bending import UniformBendingTest
+
+        return partial(UniformBendingTest, zone=self.load(case).zone, direction=case.load.direction)
+
+    def reference(self, case: Case, result) -> dict:
+        """What the run measured beside the stick–slip law (``uniform_bending_report``)."""
+        return uniform_bending_report(case.cable, case.load.tension, result.folder)
+
+    def summary_lines(self, case: Case, result) -> list[str]:
+        return bending_lines(self.load(case).zone, result.reference)
+
+    def figures(self, case: Case, result, note: str = "") -> list[Path]:
+        return [bending_figure(case, result.folder, note)]
+
+
+def uniform_bending_report(cable: Cable, tension: float, folder) -> dict:
+    """What the uniform bending test measured, beside the stick–slip law (``analytical``): first
+    loading leg M(κ) at the report curvatures, the initial slope against EI_max and EI_min, the
+    spread of the section moments and of the end reactions, the loop area against Masing's, and
+    the slip onset per layer (first curvature at which 10 % of the pairs on the layer's inner
+    interface slip in the zone) against κ_b."""
+    from ..analytical import StickSlipLaw, loop_area, masing
+    from ..post import read_table
+
+    mk = read_table(f"{folder}/moment_curvature.csv")
+    slip = read_table(f"{folder}/slip.csv")
+    if len(mk["step"]) == 0:
+        return {}
+    kn, k = mk["curvature_nominal_1_per_m"], mk["curvature_1_per_m"]
+    sections = np.column_stack([mk[c] for c in mk if c.startswith("moment_zone")])
+    M = mk["moment_zone_middle_Nm"]
+    reactions = np.column_stack([mk["moment_end_reaction_0_Nm"], mk["moment_end_reaction_L_Nm"]])
+    peak = int(np.argmax(np.abs(kn) >= np.abs(kn).max() - 1e-12))
+    leg = slice(0, peak + 1)
+    laws = {rule: StickSlipLaw(cable, tension, rule) for rule in ("cumulative", "own_tension")}
+    report = {
+        "ei_min": laws["cumulative"].ei_min,
+        "ei_max": laws["cumulative"].ei_max,
+        "initial_slope": float(M[0] / k[0]),
+        "uniformity": float(np.max(np.ptp(sections, axis=1)) / np.abs(M).max()),
+        "reaction_error": float(np.abs(reactions - M[:, None]).max() / np.abs(M).max()),
+        "table": [],
+    }
+    order = np.argsort(k[leg])
+    for kappa in (0.001, 0.005, 0.01, 0.05, 0.1, 0.25, 0.5):
+        if k[0] <= kappa <= np.abs(k[leg]).max() * (1 + 1e-9):
+            report["table"].append(
+                (kappa, float(np.interp(kappa, k[leg][order], M[leg][order])),
+                 float(laws["cumulative"].moment(kappa)), float(laws["own_tension"].moment(kappa)))
+            )  # fmt: skip
+    # a whole cycle: the loop area against Masing's on the same curvature path
+    if len(kn) > peak + 2 and abs(kn[-1]) < 1e-12 and np.min(kn) < -0.9 * np.max(kn):
+        path = np.r_[0.0, k]
+        model = np.r_[0.0, M]
+        report["loop_area"] = loop_area(path, model)
+        report["masing_area"] = {
+            rule: loop_area(path, masing(law.moment, path)) for rule, law in laws.items()
+        }
+    onset = []
+    by_step = {int(n): j for j, n in enumerate(slip["step"])}
+    first_leg = [(float(k[j]), by_step.get(int(mk["step"][j]))) for j in range(peak + 1)]
+    for i in range(1, len(cable.layers)):
+        col = slip.get(f"slipping_{i - 1}|{i}")
+        hits = [kj for kj, j in first_leg if col is not None and j is not None and col[j] >= 0.1]
+        onset.append(hits[0] if hits else np.nan)
+    report["slip_onset"] = onset
+    report["slip_onset_law"] = {r: law.slip_onset for r, law in laws.items()}
+    return report
+
+
+def bending_lines(zone: float, r: dict) -> list[str]:
+    """The uniform bending test's summary lines (zone ``zone`` m, report ``r``), beside the
+    stick–slip law."""
+    if not r:
+        return []
+    lines = [
+        f"uniform bending, zone {zone:g} m: section moments uniform within "
+        f"{100 * r['uniformity']:.2f} %, end reactions within {100 * r['reaction_error']:.2f} %",
+        f"first step M/κ = {r['initial_slope']:.0f} N m² = {r['initial_slope'] / r['ei_max']:.2f} "
+        f"EI_max ({r['ei_max']:.0f}) = {r['initial_slope'] / r['ei_min']:.1f} EI_min "
+        f"({r['ei_min']:.1f})",
+        "  κ (1/m)   M model (N m)   stick–slip law: cumulative  own tension",
+    ]
+    for kappa, m, cum, own in r["table"]:
+        lines.append(f"  {kappa:7.3f}   {m:13.2f}   {cum:26.2f}  {own:11.2f}")
+    if "loop_area" in r:
+        ma = r["masing_area"]
+        lines.append(
+            f"loop area {r['loop_area']:.2f} J/m; Masing on the same κ path: "
+            f"{ma['cumulative']:.2f} (cumulative), {ma['own_tension']:.2f} (own tension)"
+        )
+    law = r["slip_onset_law"]
+    lines.append("slip onset (10 % of the layer's inner pairs in the zone), κ (1/m):")
+    for i, k in enumerate(r["slip_onset"], start=1):
+        lines.append(
+            f"  layer {i}: model {k:.4f}   κ_b cumulative {law['cumulative'][i - 1]:.4f}, "
+            f"own tension {law['own_tension'][i - 1]:.4f}"
+        )
+    return lines
+
+
+def bending_figure(case: Case, folder, note: str = "") -> Path:
+    """``moment_curvature.png`` of the uniform bending test: the zone's M–κ loop, the section
+    moments and end reactions (uniformity), the EI bounds, and the stick–slip law (virgin curve and
+    Masing loop on the measured curvature path, for both friction rules). ``note``: a line in red
+    at the bottom (an incomplete run)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..analytical import StickSlipLaw, masing
+    from ..plots import save_figure
+    from ..post import read_table
+
+    folder = Path(folder)
+    mk = read_table(folder / "moment_curvature.csv")
+    k = np.r_[0.0, mk["curvature_1_per_m"]]
+    M = np.r_[0.0, mk["moment_zone_middle_Nm"]]
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [3, 2]})
+    ax.plot(k, M, "o-", ms=3, color="k", label="strand (mid-zone section)")
+    span = np.abs(k).max() or 1.0
+    for rule, style in (("cumulative", "-"), ("own_tension", "--")):
+        law = StickSlipLaw(case.cable, case.load.tension, rule)
+        ax.plot(k, masing(law.moment, k), style, lw=1.2,
+                label=f"stick–slip law, {rule.replace('_', ' ')} (Masing)")  # fmt: skip
+        ei_min, ei_max = law.ei_min, law.ei_max
+    line = np.array([-span, span])
+    ax.plot(line, ei_max * line, ":", color="tab:red", label=f"EI_max = {ei_max:.0f} N m²")
+    ax.plot(line, ei_min * line, ":", color="tab:blue", label=f"EI_min = {ei_min:.1f} N m²")
+    ax.set_ylim(1.3 * min(M.min(), 0) - 1e-9, 1.3 * max(M.max(), 0) + 1e-9)
+    ax.set_xlabel("zone curvature κ (1/m)")
+    ax.set_ylabel("bending moment M (N m)")
+    ax.set_title(f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN: uniform bending")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    cols = [c for c in mk if c.startswith("moment_")]
+    for c in cols:
+        ax2.plot(mk["step"], mk[c] - mk["moment_zone_middle_Nm"], ".", ms=4,
+                 label=c.removeprefix("moment_").removesuffix("_Nm").replace("_", " "))  # fmt: skip
+    ax2.set_xlabel("step")
+    ax2.set_ylabel("M − M(mid-zone) (N m)")
+    ax2.set_title("uniformity: five sections of the zone, end reactions")
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=7)
+    return save_figure(fig, folder / "moment_curvature.png", note)

@@ -1,0 +1,44 @@
+"""Newton's method (PETSc SNES, MUMPS LU) and load stepping for UFL beams plus pair terms.
+
+The beam lives in UFL; contact pairs, penalty links and nodal loads do not. They enter through the
+``PairTerms`` protocol: each term set owns a fixed array of node stencils and returns, for the
+current state, all its residual vectors and tangent blocks at once (numpy arrays).
+``NonlinearProblem`` is dolfinx's (``dolfinx.fem.petsc.NonlinearProblem``: its
+``petsc_options_prefix``, ``petsc_options`` and ``.solver`` SNES), extended as dolfinx_mpc extends
+it. It
+
+* extends the sparsity pattern of the UFL Jacobian with the stencils, once,
+* adds the stencil residuals into the ghosted residual vector and the blocks into the matrix that
+  dolfinx assembled (one ``setValuesLocalRCV`` call per term set),
+* masks Dirichlet dofs, lifting the stencils' coupling to prescribed motions onto the free
+  rows (as dolfinx's ``apply_lifting`` does for the forms),
+* decides convergence by PETSc's default rules, then strand's stall and balance tests
+  (``NewtonOptions``), and
+* keeps the last converged state so that a failed step can be rolled back (``LoadStepper``).
+
+Modules: ``terms`` (the pair terms and their assembly), ``convergence`` (Newton's settings and
+tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and its records),
+``interrupt`` (Ctrl-C).
+"""
+
+from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
+from .interrupt import Interrupt
+from .problem import NewtonSolver, NonlinearProblem
+from .stepping import LoadStepFailure, LoadStepper, RampState, RunInterrupted, StepRecord
+from .terms import NodalLoad, PairTerms
+
+__all__ = [
+    "NonlinearProblem",
+    "PairTerms",
+    "NodalLoad",
+    "NewtonOptions",
+    "NewtonResult",
+    "NewtonConvergence",
+    "NewtonSolver",
+    "LoadStepper",
+    "StepRecord",
+    "RampState",
+    "LoadStepFailure",
+    "RunInterrupted",
+    "Interrupt",
+]

@@ -1,0 +1,289 @@
+"""dolfinx's ``NonlinearProblem`` with pair terms and strand's convergence tests.
+
+``NonlinearProblem`` extends ``dolfinx.fem.petsc.NonlinearProblem`` the way dolfinx_mpc's does: the
+same arguments (``petsc_options_prefix``, ``petsc_options``), the same ``.solver`` SNES, ``A``,
+``b``, ``x``, ``F``, ``J`` and ``u``, with its own Jacobian matrix (the forms' sparsity pattern
+extended by the pair stencils) and its own SNES callbacks, which add the pair terms
+(``strand.solver.terms``) to what dolfinx assembles. SNES decides convergence by PETSc's default
+rules, then the stall and balance tests (``strand.solver.convergence``). It also keeps the last
+converged state, so that a failed load step can be rolled back.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+
+import dolfinx.fem.petsc as fem_petsc
+import numpy as np
+import numpy.typing as npt
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+from petsc4py import PETSc
+
+from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
+from .interrupt import Interrupt
+from .terms import PairAssembler, PairTerms, create_extended_matrix
+
+__all__ = ["NonlinearProblem", "NewtonSolver"]
+
+
+class NonlinearProblem(fem_petsc.NonlinearProblem):
+    """``F(u; v) + Σ pair terms = 0`` with Dirichlet conditions ``bcs``, solved by PETSc SNES
+    (Newton, MUMPS LU by default).
+
+    Args:
+        F: residual form (internal minus external virtual work), linear in the test function.
+        u: the unknown on a blocked (6,)-valued space (u, θ per node); updated in place by
+            ``solve``.
+        bcs: Dirichlet conditions on ``u.function_space``.
+        terms: ``PairTerms`` objects (contact, links, nodal loads).
+        J: Jacobian form; default ``ufl.derivative(F, u)``.
+        options: ``NewtonOptions``: tolerances, line search, the stall and balance tests.
+        petsc_options_prefix: options prefix of the SNES (and ``A_``, ``b_``, ``x_`` after it
+            for those); default: one of this problem's own.
+        petsc_options: PETSc options set under the prefix, after (and over) those of
+            ``options``. They stay in PETSc's database while the problem lives (the MUMPS
+            ones are read at the first factorisation) and ``destroy`` removes them.
+        monitor: called as ``monitor(iteration, residual_norm)`` at every Newton iteration.
+        form_compiler_options, jit_options: as for ``dolfinx.fem.form``.
+    """
+
+    def __init__(
+        self,
+        F: ufl.Form,
+        u: fem.Function,
+        bcs: Sequence[fem.DirichletBC] | None = None,
+        *,
+        terms: Sequence[PairTerms] = (),
+        J: ufl.Form | None = None,
+        options: NewtonOptions | None = None,
+        petsc_options_prefix: str | None = None,
+        petsc_options: dict | None = None,
+        monitor: Callable[[int, float], None] | None = None,
+        form_compiler_options: dict | None = None,
+        jit_options: dict | None = None,
+    ):
+        # Not the base constructor: it allocates the forms' Jacobian and binds dolfinx's
+        # callbacks to it, and this problem's matrix must hold the pair stencils (dolfinx_mpc's
+        # NonlinearProblem builds its own for its constraints in the same way). The attributes
+        # are the base class's, so that its properties and ``__del__`` hold.
+        V = u.function_space
+        if V.dofmap.index_map_bs != 6:
+            raise ValueError(
+                f"{type(self).__name__} expects a blocked (6,)-valued space (u, θ) per node"
+            )
+        if petsc_options_prefix is None:
+            petsc_options_prefix = f"strand_newton_{id(self):x}_"
+        if petsc_options_prefix == "":
+            raise ValueError("PETSc options prefix cannot be empty.")
+        jit = dict(form_compiler_options=form_compiler_options, jit_options=jit_options)
+        self._u = u
+        self._F = fem.form(F, **jit)
+        self._J = fem.form(J if J is not None else ufl.derivative(F, u), **jit)
+        self._preconditioner = None
+        self._P_mat = None
+        self.bcs = list(bcs) if bcs is not None else []
+        self.terms = list(terms)
+        self.options = options or NewtonOptions()
+        self.monitor = monitor
+        #: an ``Interrupt``: once requested, the current solve stops at its next residual
+        self.interrupt: Interrupt | None = None
+        self._pairs = PairAssembler(self.terms, self.bcs, V)
+        self._A = create_extended_matrix(self._J, [t.stencils for t in self.terms])
+        self._b = fem_petsc.create_vector(V)
+        self._x = fem_petsc.create_vector(V)
+        self._convergence = NewtonConvergence(self.options, self._b, V.mesh.comm)
+
+        self._petsc_options_prefix = petsc_options_prefix
+        self._snes = PETSc.SNES().create(V.mesh.comm)
+        self._snes.setOptionsPrefix(petsc_options_prefix)
+        self._A.setOptionsPrefix(f"{petsc_options_prefix}A_")
+        self._b.setOptionsPrefix(f"{petsc_options_prefix}b_")
+        self._x.setOptionsPrefix(f"{petsc_options_prefix}x_")
+        settings = {**self.options.petsc_options(), **(petsc_options or {})}
+        self._option_names = [f"{petsc_options_prefix}{k}" for k in settings]
+        opts = PETSc.Options()
+        for name, v in zip(self._option_names, settings.values(), strict=True):
+            opts[name] = v
+        self._snes.setFunction(self._residual, self._b)
+        self._snes.setJacobian(self._jacobian, self._A, self._A)
+        self._snes.setMonitor(self._monitor)
+        self._snes.setConvergenceTest(self._convergence)
+        self._snes.setFromOptions()
+        self._saved = u.x.array.copy()
+        #: wall time (s) in: residual and Jacobian callbacks (everything they do), the pair terms'
+        #: evaluation (inside the callbacks), their insertion into PETSc objects (idem), and the
+        #: whole of ``solve`` (callbacks + LU + SNES overhead)
+        self.timings = {"residual": 0.0, "jacobian": 0.0, "terms": 0.0, "insert": 0.0, "solve": 0.0}
+
+    @property
+    def w(self) -> fem.Function:
+        """The unknown ``u`` (displacements and rotations)."""
+        return self._u
+
+    @property
+    def V(self) -> fem.FunctionSpace:
+        """The space of ``u``."""
+        return self._u.function_space
+
+    # -- SNES callbacks --------------------------------------------------------------------------
+    def _residual(self, snes, x, b):
+        t0 = time.perf_counter()
+        x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        fem_petsc.assign(x, self._u)
+        if not self._all_finite() or self.stop_requested():
+            # a diverged iterate, or Ctrl-C: SNES stops (DIVERGED_FUNCTION_NANORINF)
+            b.set(np.nan)
+            return
+        terms = self._pairs.evaluate(self._u.x.array, self.timings)
+        t1 = time.perf_counter()
+        with b.localForm() as bl:
+            bl.set(0.0)
+            self._pairs.add_residuals(bl.array_w, terms)
+        self.timings["insert"] += time.perf_counter() - t1
+        fem_petsc.assemble_vector(b, self._F)
+        fem_petsc.apply_lifting(b, [self._J], bcs=[self.bcs], x0=[x], alpha=-1.0)
+        b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        fem_petsc.set_bc(b, self.bcs, x0=x, alpha=-1.0)
+        b.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        self.timings["residual"] += time.perf_counter() - t0
+
+    def _jacobian(self, snes, x, J, P):
+        t0 = time.perf_counter()
+        x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        fem_petsc.assign(x, self._u)
+        terms = self._pairs.evaluate(self._u.x.array, self.timings)
+        J.zeroEntries()
+        fem_petsc.assemble_matrix(J, self._J, self.bcs, diag=1.0)
+        J.assemble(PETSc.Mat.AssemblyType.FLUSH)  # the Dirichlet diagonal was INSERTed
+        t2 = time.perf_counter()
+        self._pairs.add_tangents(J, terms)
+        J.assemble()
+        t3 = time.perf_counter()
+        self.timings["insert"] += t3 - t2
+        self.timings["jacobian"] += t3 - t0
+
+    def _monitor(self, snes, its, norm):
+        self._convergence.record(norm)
+        if self.monitor is not None:
+            self.monitor(its, float(norm))
+
+    # -- solving ---------------------------------------------------------------------------------
+    def solve(self) -> NewtonResult:
+        """Run Newton from the current ``u``. On failure ``u`` holds the last iterate."""
+        self._convergence.reset()
+        self._pairs.forget()
+        t0 = time.perf_counter()
+        fem_petsc.assign(self._u, self._x)
+        self._snes.solve(None, self._x)
+        self._x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        fem_petsc.assign(self._x, self._u)
+        reason = self._snes.getConvergedReason()
+        if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE:
+            # a failed factorisation leaves the PC failed: without a reset every later solve
+            # (after a step cut, from a good state) would fail at once
+            self._snes.getKSP().reset()
+        converged = self._convergence.accepts(reason, self._all_finite)
+        dt = time.perf_counter() - t0
+        self.timings["solve"] += dt
+        return NewtonResult(
+            converged,
+            self._snes.getIterationNumber(),
+            self._convergence.reason_name(reason),
+            list(self._convergence.residuals),
+            dt,
+        )
+
+    def _all_finite(self) -> bool:
+        """Whether the unknowns are finite on every rank (the same answer on all: collective)."""
+        ok = bool(np.all(np.isfinite(self._u.x.array)))
+        comm = self.V.mesh.comm
+        return comm.allreduce(ok, op=MPI.LAND) if comm.size > 1 else ok
+
+    def stop_requested(self) -> bool:
+        """Whether the user asked to stop (``interrupt``) on any rank; collective, so that every
+        rank takes the same branch."""
+        asked = self.interrupt is not None and self.interrupt.requested
+        comm = self.V.mesh.comm
+        return comm.allreduce(asked, op=MPI.LOR) if comm.size > 1 else asked
+
+    def unconstrained_residual(self) -> npt.NDArray[np.float64]:
+        """Residual (internal minus external forces, N and N m) of the current state with no
+        Dirichlet condition applied and no pair term masked, as (n_blocks, 6) over the owned
+        nodes: at supported dofs it is the support reaction. Uses the pair terms' last
+        evaluation when it was at this state (it is after a solve), so their states and
+        histories are left as they are."""
+        b = fem_petsc.create_vector(self.V)
+        with b.localForm() as bl:
+            bl.set(0.0)
+            terms = self._pairs.evaluate(self._u.x.array, self.timings)
+            self._pairs.add_residuals(bl.array_w, terms, reactions=True)
+        fem_petsc.assemble_vector(b, self._F)
+        b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        n_owned = self.V.dofmap.index_map.size_local
+        out = b.array_r[: 6 * n_owned].reshape(-1, 6).copy()
+        b.destroy()
+        return out
+
+    # -- load steps ------------------------------------------------------------------------------
+    def commit(self) -> None:
+        """Accept the current state: it becomes the one ``rollback`` returns to."""
+        self._saved[:] = self._u.x.array
+        self._pairs.commit()
+
+    def rollback(self) -> None:
+        """Return to the last committed state (unknowns and term histories)."""
+        self._u.x.array[:] = self._saved
+        self._pairs.rollback()
+
+    # -- PETSc objects ---------------------------------------------------------------------------
+    def destroy(self) -> None:
+        """Free the PETSc objects and remove this problem's options from PETSc's database."""
+        self._remove_options()
+        for obj in (self._snes, self._A, self._b, self._x):
+            obj.destroy()
+
+    def _remove_options(self) -> None:
+        opts = PETSc.Options()
+        for name in getattr(self, "_option_names", ()):
+            opts.delValue(name)
+        self._option_names = []
+
+    def __del__(self):
+        self._remove_options()
+        if hasattr(self, "_snes"):
+            super().__del__()
+
+
+class NewtonSolver(NonlinearProblem):
+    """``NonlinearProblem`` with the spellings that demos, tests and benchmarks still use:
+    ``NewtonSolver(F, w, bcs, terms=..., prefix=...)``, and ``snes`` and ``prefix`` for
+    ``solver`` and the options prefix."""
+
+    def __init__(
+        self,
+        F: ufl.Form,
+        w: fem.Function,
+        bcs: Sequence[fem.DirichletBC] = (),
+        terms: Sequence[PairTerms] = (),
+        J: ufl.Form | None = None,
+        options: NewtonOptions | None = None,
+        prefix: str | None = None,
+        monitor: Callable[[int, float], None] | None = None,
+    ):
+        super().__init__(
+            F, w, bcs, terms=terms, J=J, options=options, petsc_options_prefix=prefix,
+            monitor=monitor,
+        )  # fmt: skip
+
+    @property
+    def snes(self) -> PETSc.SNES:
+        """The SNES (``solver``)."""
+        return self.solver
+
+    @property
+    def prefix(self) -> str:
+        """The options prefix (``petsc_options_prefix``)."""
+        return self._petsc_options_prefix

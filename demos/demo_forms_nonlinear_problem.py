@@ -11,9 +11,9 @@
 #
 # `forms` is plain UFL: its Reissner beam needs nothing of strand's solver. This demo bends a
 # cantilever far into the nonlinear range with `dolfinx.fem.petsc.NonlinearProblem` and shows the
-# PETSc options it needs, and why. The reference is the elastica: a cantilever under a dead tip
-# load $P$ with $PL^2/EI = 10$ has its tip at $v/L = 0.81061$ (Mattiasson, IJNME 17, 1981).
-# Units: SI.
+# PETSc options it needs, and why; then the same with strand's `NonlinearProblem`, which extends
+# dolfinx's. The reference is the elastica: a cantilever under a dead tip load $P$ with
+# $PL^2/EI = 10$ has its tip at $v/L = 0.81061$ (Mattiasson, IJNME 17, 1981). Units: SI.
 
 # +
 import strand  # noqa: F401  (the wheel's MPI library must be loaded before dolfinx; see README)
@@ -32,6 +32,8 @@ from mpi4py import MPI
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, straight_beam_mesh
 from strand.parallel import serial_only
+from strand.solver import NewtonOptions, NodalLoad
+from strand.solver import NonlinearProblem as StrandNonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 
@@ -103,6 +105,35 @@ for k in range(1, 11):
 v_tip, u_tip = u[tip_block, 1] / L, u[tip_block, 0] / L
 print(f"tip: v/L = {v_tip:.5f} (elastica 0.81061), (L − x)/L = {-u_tip:.5f} (elastica 0.55500)")
 assert abs(v_tip - 0.81061) < 1e-3 and abs(-u_tip - 0.55500) < 1e-3
+
+# ## The same with strand's `NonlinearProblem`
+#
+# `strand.solver.NonlinearProblem` is this class, extended: the same arguments
+# (`petsc_options_prefix`, `petsc_options`), the same `problem.solver` SNES, plus terms assembled
+# outside UFL (contact pairs, nodal loads: here the tip force as a `NodalLoad`), strand's
+# convergence tests (`NewtonOptions`) and the options above as its defaults. Its `solve` returns
+# the outcome (converged in physical terms, iterations, residual norms) rather than raising. Its
+# stall test, which cuts a contact step whose residual has not halved in two iterations, would
+# also cut these first iterations, whose residual rises: it is switched off (`stall_after=0`).
+
+w_s = fem.Function(V)
+tip_load = NodalLoad([tip_block], [[0.0, P, 0.0, 0.0, 0.0, 0.0]])
+newton = NewtonOptions(atol=1e-8, rtol=1e-10, stall_after=0)
+strand_problem = StrandNonlinearProblem(
+    ReissnerBeam(w_s, section).residual(), w_s, [bc], terms=[tip_load], options=newton,
+    petsc_options_prefix="strand_beam_",
+)  # fmt: skip
+snes = strand_problem.solver
+print(f"strand's SNES: {snes.getType()}, options prefix {snes.getOptionsPrefix()}")
+for k in range(1, 11):
+    tip_load.factor = k / 10
+    result = strand_problem.solve()
+    assert result.converged, result.reason
+v_strand = w_s.x.array.reshape(-1, 6)[tip_block, 1] / L
+print(f"strand's NonlinearProblem: last step {result.iterations} iterations, v/L = {v_strand:.5f}")
+print(f"|v_strand - v_dolfinx| / L = {abs(v_strand - v_tip):.1e}")
+assert abs(v_strand - v_tip) < 1e-12
+strand_problem.destroy()
 
 # ## Picture
 

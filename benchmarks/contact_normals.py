@@ -18,11 +18,11 @@ import time
 import numpy as np
 
 from strand.cable import cardinal
-from strand.contact.element import ContactSettings
-from strand.contact.measure import centreline_gaps
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.problem import StrandProblem
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
+from strand.strand_contact import centreline_gaps
 
 
 def run(geometry, normal: str, friction: bool, p_max: float) -> dict:

@@ -18,7 +18,7 @@ import time
 from pathlib import Path
 
 from strand.cable import cardinal
-from strand.contact.element import ContactSettings
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.post import CellEvaluator, cell_results
 from strand.problem import StrandProblem

@@ -17,7 +17,7 @@ import sys
 import time
 
 from strand.cable import cardinal
-from strand.contact.element import ContactSettings
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions

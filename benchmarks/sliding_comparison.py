@@ -23,7 +23,7 @@ from pathlib import Path
 
 from strand.cable import Cable, cardinal
 from strand.compare import difference_table, overlay_figure
-from strand.contact.element import ContactSettings
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.post import cell_results
 from strand.problem import StrandProblem

@@ -87,7 +87,7 @@ from pathlib import Path
 from typing import Any
 
 from .cable import Cable, CableError, cable_from_dict, cardinal, load_cable
-from .contact.element import ContactSettings
+from .contact_settings import ContactSettings
 from .settings import (
     KIND_SECTIONS,
     FatigueSettings,

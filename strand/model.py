@@ -16,13 +16,12 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 
-from .contact.element import ContactSettings
-from .contact.sliding import sliding_groups, sliding_windows
-from .contact.strand_pairs import contact_groups, pair_stencils
+from .contact_settings import ContactSettings
 from .geometry import StrandGeometry
 from .mesh import CableMesh, beam_space, cable_mesh, input_to_block
 from .output import cell_function
 from .partition import DistributionError, owned_rows
+from .strand_contact import contact_groups, pair_stencils, sliding_groups, sliding_windows
 
 __all__ = ["StrandModel", "layer_section", "strand_stencils"]
 

@@ -15,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 from mpi4py import MPI
 
-from .contact.element import ContactSettings
+from .contact_settings import ContactSettings
 from .geometry import StrandGeometry
 from .model import StrandModel
 from .setups.base import TestSetup

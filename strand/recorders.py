@@ -324,9 +324,9 @@ class PairHistory(_CycleHistory):
     def __init__(self, folder: Path, model, parameter: str):
         super().__init__(parameter)
         from .contact.pairs import crossing_angle
-        from .contact.strand_pairs import wire_neighbours
         from .geometry import LINE
         from .history import HistoryWriter
+        from .strand_contact import wire_neighbours
 
         g, p = model.geometry, model.geometry.pairs
         self.model, self.a, self.b = model, p.a, p.b

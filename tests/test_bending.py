@@ -19,7 +19,7 @@ from strand.analytical import (
 )
 from strand.cable import cardinal
 from strand.case import CaseError, case_from_dict
-from strand.contact.element import ContactSettings
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.kinds.saddle import saddle_beam_reference
 from strand.post import bending_stiffness_bounds, cell_results

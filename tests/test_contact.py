@@ -9,7 +9,7 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 from strand.cable import CableError, cable_from_dict, cardinal
-from strand.contact.element import ContactGroup, ContactSettings
+from strand.contact.element import ContactGroup
 from strand.contact.hertz import compliance as compliance_of
 from strand.contact.hertz import mindlin_ratio, point_coefficient
 from strand.contact.kinematics import (
@@ -25,12 +25,13 @@ from strand.contact.laws import (
     Mindlin,
     PenaltyLaw,
 )
-from strand.contact.measure import centreline_gaps
+from strand.contact_settings import ContactSettings
 from strand.geometry import LINE, POINT, build_geometry
 from strand.mesh import beam_space, input_to_block, polyline_mesh
 from strand.problem import StrandProblem
 from strand.setups.saddle import saddle_weights
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad
+from strand.strand_contact import centreline_gaps
 
 R_A, R_B = 1.5e-3, 2.0e-3  # m
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6

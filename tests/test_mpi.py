@@ -17,7 +17,7 @@ import pytest
 from test_run import SEVEN_WIRE
 
 from strand.cable import cardinal
-from strand.contact.element import ContactSettings
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.model import strand_stencils
 from strand.partition import DistributionError, owned_rows, slab_destinations

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from test_contact import fd_tangent, nineteen_wire, seven_wire
 
-from strand.contact.element import ContactSettings
 from strand.contact.laws import ElasticSlip, PenaltyLaw
 from strand.contact.sliding import SlidingGroup, SlidingWindowError
+from strand.contact_settings import ContactSettings
 from strand.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
@@ -198,13 +198,15 @@ def test_windows_reach_the_sliding_room_and_no_further():
     wire's end), and dropping its outermost segment would not: Cardinal has segments from 1 µm
     to 4 mm, so windows counted in segments would leave some pairs no room at all."""
     from strand.cable import cardinal
-    from strand.contact.sliding import _windows
     from strand.geometry import build_geometry
+    from strand.strand_contact import wire_chains
 
     geometry = build_geometry(cardinal(), 0.3)
     reach = 1e-3
     nodes = np.concatenate([geometry.pairs.a, geometry.pairs.b])
-    first, last, ends = _windows(geometry, nodes, reach)
+    chains = wire_chains(geometry)
+    first, last, ends = chains.stretch(nodes, reach)
+    first, last = chains.nodes[first], chains.nodes[last]  # the wires' input nodes
     x = geometry.points
 
     def arc(i, j):  # arc length from node i to node j ≥ i along one wire

@@ -11,7 +11,7 @@ import pytest
 
 from strand.analytical import costello_stiffness
 from strand.cable import cardinal
-from strand.contact.element import ContactSettings
+from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.post import cell_results, section_resultants
 from strand.problem import StrandProblem

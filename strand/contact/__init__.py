@@ -1,10 +1,13 @@
-"""Beam-to-beam contact on fixed node pairs (small sliding): laws, kinematics, assembly.
+"""Beam-to-beam contact: laws, kinematics, pair groups and their builders from mesh nodes.
 
-The public API puts any beams of a dolfinx mesh in contact (``strand.contact.pairs``):
+The public API puts any beams of a dolfinx mesh in contact, at small sliding
+(``strand.contact.pairs``) or large sliding (``strand.contact.windows``):
 
 >>> from strand.contact import candidate_pairs, contact_terms, PenaltyLaw, ElasticSlip
 """
 
+from .element import resolve_normal
+from .errors import ContactError
 from .laws import (
     ElasticSlip,
     FrictionLaw,
@@ -15,27 +18,25 @@ from .laws import (
     PenaltyLaw,
     hertz_mindlin,
 )
-from .pairs import (
-    BeamNodes,
-    NodePairs,
-    beam_nodes,
-    candidate_pairs,
-    contact_terms,
-    hertz_laws,
-    locate_nodes,
-    node_pairs,
-)
+from .nodes import BeamNodes, beam_nodes, locate_nodes
+from .pairs import NodePairs, candidate_pairs, contact_terms, hertz_laws, node_pairs
+from .sliding import SlidingGroup, SlidingWindowError
+from .windows import NodeChains, sliding_terms
 
 __all__ = [
     "BeamNodes",
+    "ContactError",
     "ElasticSlip",
     "FrictionLaw",
     "HertzLineLaw",
     "HertzPointLaw",
     "Mindlin",
+    "NodeChains",
     "NodePairs",
     "NormalLaw",
     "PenaltyLaw",
+    "SlidingGroup",
+    "SlidingWindowError",
     "beam_nodes",
     "candidate_pairs",
     "contact_terms",
@@ -43,4 +44,6 @@ __all__ = [
     "hertz_mindlin",
     "locate_nodes",
     "node_pairs",
+    "resolve_normal",
+    "sliding_terms",
 ]

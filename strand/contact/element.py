@@ -4,95 +4,40 @@ Each ``ContactGroup`` holds the pairs of one kind (crossings or line pairs); the
 ``PairGroup`` applies the normal and friction laws (``strand.contact.group``). Per pair, the gap is
 one of ``kinematics``'s normals, and the slip since the last converged step is Δg_T = S Δq with
 S = P_n[−I, r_a n×, I, r_b n×] acting on (u_a, θ_a, u_b, θ_b): the relative motion of the two
-surface points, n and the tangent plane frozen at the start of the step. ``ContactSettings`` are
-the contact settings of a strand; ``strand.contact.pairs`` builds groups on any beams and
-``strand.contact.strand_pairs`` those of a strand. Units: m, N, rad.
+surface points, n and the tangent plane frozen at the start of the step. ``resolve_normal``
+names the normal a group uses; ``strand.contact.pairs`` builds groups on any beams
+(``strand.strand_contact`` those of a strand). Units: m, N, rad.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
-
 import numpy as np
 import numpy.typing as npt
 
-from ..cable import CableError
+from .errors import ContactError
 from .group import PairGroup, PairKinematics
 from .kinematics import NORMALS, gap_derivatives, skew, stencil_nodes
 from .laws import FrictionLaw, NormalLaw
 
-__all__ = ["ContactSettings", "ContactGroup"]
-
-COMPLIANCES = ("penalty", "hertz")
+__all__ = ["ContactGroup", "resolve_normal"]
 
 Array = npt.NDArray[np.float64]
 
 
-@dataclass(frozen=True)
-class ContactSettings:
-    """Contact model settings (SI units).
+def resolve_normal(normal: str, friction: bool) -> str:
+    """The contact normal that ``normal`` names: one of ``kinematics.NORMALS``, or "auto":
+    "director" with friction, "frozen" without (frictionless beams lying on others have
+    near-zero-energy modes, rolling around them, that only the frozen normal's stiffness holds).
 
-    Attributes:
-        normal: "director" (the seed paper's: rotated nodal tangents), "neighbour"
-            (translation-only, from neighbour chords), "frozen" (initial radial normal), or
-            "auto" (default): "director" with friction, "frozen" without. With friction the two
-            geometry-following normals converge alike and give the same gaps (Cardinal, 4.3 kN:
-            max error 3.7 vs 3.4 µm); "director" keeps 2-node stencils, so its LU is 1.6× cheaper.
-            A frictionless strand has near-zero-energy modes (wires rolling around the layer
-            below) that only the frozen normal's spurious stiffness holds; its gaps are then only
-            approximate in bending (up to 11 µm). See ``strand.contact.kinematics``.
-        compliance: "hertz" (default: contact mechanics from the wires' radii and moduli and the
-            current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
-            contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
-            ``strand.contact.hertz``) or "penalty" (the seed paper's: a penalty K_N, and friction
-            reaching μP after an elastic slip g_lim). k_point, k_line and g_lim apply to "penalty"
-            only. The default has no free parameter: every stiffness follows from the wires.
-        k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
-        k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
-            line pair gets k_line × its tributary length.
-        g_lim: slip at which friction reaches μP (elastic slip, K_T = μP/g_lim), m.
-        friction: use the Coulomb coefficients of the cable (False: frictionless).
-        model: "small" sliding (pairs fixed at t = 0, this module) or "large" sliding (pairs
-            re-projected at every iteration, ``strand.contact.sliding``: the baseline).
-        reach: large sliding only: sliding distance reserved either side of each initial pair,
-            m (its window holds every segment of the two wires within reach).
+    Raises ``ContactError`` for any other name.
     """
-
-    normal: str = "auto"
-    compliance: str = "hertz"
-    k_point: float = 5e7
-    k_line: float = 5e9
-    g_lim: float = 5e-6
-    friction: bool = True
-    model: str = "small"
-    reach: float = 1e-3
-
-    def __post_init__(self):
-        if self.normal == "auto":
-            object.__setattr__(self, "normal", "director" if self.friction else "frozen")
-        if self.normal not in NORMALS:
-            raise CableError(
-                f"contact normal {self.normal!r} is unknown; choose auto, {', '.join(NORMALS)}"
-            )
-        if self.compliance not in COMPLIANCES:
-            raise CableError(
-                f"contact compliance {self.compliance!r} is unknown; choose "
-                f"{' or '.join(COMPLIANCES)}"
-            )
-        if self.model not in ("small", "large"):
-            raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
-        for name in ("k_point", "k_line", "g_lim", "reach"):
-            value = getattr(self, name)
-            if not (isinstance(value, int | float) and value > 0):
-                raise CableError(f"contact {name} = {value!r}: must be a positive number")
-        if self.compliance != "penalty":
-            defaults = {f.name: f.default for f in fields(self)}
-            given = [n for n in ("k_point", "k_line", "g_lim") if getattr(self, n) != defaults[n]]
-            if given:
-                raise CableError(
-                    f'contact {", ".join(given)} apply to compliance = "penalty" only (the '
-                    f"{self.compliance} compliance follows from the wires); set one or the other"
-                )
+    if normal == "auto":
+        return "director" if friction else "frozen"
+    if normal not in NORMALS:
+        raise ContactError(
+            f"contact normal {normal!r} is unknown; choose auto, {', '.join(NORMALS)}"
+        )
+    return normal
 
 
 class ContactGroup(PairGroup):

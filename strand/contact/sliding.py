@@ -1,14 +1,14 @@
 """Large-sliding beam-to-beam contact: the baseline the small-sliding element is compared with.
 
 Every contact point is re-projected at every Newton iteration: the closest points between the
-current centrelines of its two wires, searched over a window of segments around the initial pair
-(``reach`` segments either side), so a pair moves from segment to segment as the wires slide.
-Crossings take the closest points of two centrelines; line pairs (core | layer 1) project the
-layer-1 node onto the core's centreline. The gap is their distance minus its initial value (so
-g ≡ 0 at t = 0), the normal their direction.
+current centrelines of its two beams, searched over a window of segments around the initial pair
+(those within a sliding reach either side), so a pair moves from segment to segment as the beams
+slide. Crossings take the closest points of two centrelines; line pairs (a strand's core | layer 1)
+project node b onto beam a's centreline. The gap is their distance minus its initial value plus
+the initial gap (g ≡ 0 at t = 0 for touching pairs), the normal their direction.
 
-Centrelines are C¹: on each segment the cubic Hermite curve through the two nodes with the nodal
-tangents t = R(θ) t₀ (scaled by the initial segment length). The beams' own straight segments
+Centrelines are C¹ (``strand.contact.centreline``): on each segment the cubic Hermite curve through
+the two nodes with the nodal tangents t = R(θ) t₀ (scaled by the initial segment length). The beams' own straight segments
 would not do: every contact point starts on a node, where a polyline has a kink; the closest point
 of two polylines then sits on the vertex, where the gap is not differentiable and both adjacent
 segments claim the point lies on the other (measured: on Cardinal the pairs flip segments in the
@@ -28,7 +28,8 @@ of the contact point within a step (good enough for Newton; its quadratic rate i
 points slide).
 
 The pattern reserves the whole window, so segment changes need no new non-zeros; a pair whose
-closest point wants to leave its window raises an error naming it. Units: m, N.
+closest point wants to leave its window raises an error naming it. ``strand.contact.windows``
+builds the groups from node pairs and the beams' node chains. Units: m, N.
 """
 
 from __future__ import annotations
@@ -36,20 +37,12 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from ..geometry import LINE, StrandGeometry
-from .element import ContactSettings
+from .centreline import crossing_kernel, line_kernel
 from .group import PairGroup, PairKinematics
-from .kinematics import _cross, _dot, _rotate, _rotation_coefficients, _tangent_map_transpose, skew
+from .kinematics import skew
 from .laws import FrictionLaw, NormalLaw
-from .strand_pairs import pair_laws
 
-__all__ = [
-    "SlidingGroup",
-    "sliding_groups",
-    "sliding_windows",
-    "hermite_point",
-    "SlidingWindowError",
-]
+__all__ = ["SlidingGroup", "SlidingWindowError"]
 
 Array = npt.NDArray[np.float64]
 _EPS = 1e-30
@@ -57,126 +50,6 @@ _EPS = 1e-30
 
 class SlidingWindowError(RuntimeError):
     """A contact point slid beyond the segments reserved for it."""
-
-
-# -- Hermite centrelines -----------------------------------------------------------------------
-def _hermite(xi):
-    """Cubic Hermite basis (…, 4) at ξ and its first two derivatives: weights of (x₀, L t₀, x₁, L t₁)."""
-    xi2 = xi * xi
-    xi3 = xi2 * xi
-    h = np.stack([2 * xi3 - 3 * xi2 + 1, xi3 - 2 * xi2 + xi, 3 * xi2 - 2 * xi3, xi3 - xi2], -1)
-    dh = np.stack([6 * xi2 - 6 * xi, 3 * xi2 - 4 * xi + 1, 6 * xi - 6 * xi2, 3 * xi2 - 2 * xi], -1)
-    d2h = np.stack([12 * xi - 6, 6 * xi - 4, 6 - 12 * xi, 6 * xi - 2], -1)
-    return h, dh, d2h
-
-
-def hermite_point(control, xi, derivatives: int = 0):
-    """Point (and derivatives) of the Hermite segment with control (…, 4, 3) = (x₀, L t₀, x₁, L t₁)."""
-    out = [_combine(b, control) for b in _hermite(xi)[: derivatives + 1]]
-    return out if derivatives else out[0]
-
-
-def _combine(weights, control):
-    """Σ_k w_k c_k for weights (…, 4) and control (…, 4, 3), unrolled (a strided reduce is slow)."""
-    return (
-        weights[..., 0, None] * control[..., 0, :]
-        + weights[..., 1, None] * control[..., 1, :]
-        + weights[..., 2, None] * control[..., 2, :]
-        + weights[..., 3, None] * control[..., 3, :]
-    )
-
-
-def _controls(y, tangents, length):
-    """Control points of one segment from y (…, 12) = (x₀, θ₀, x₁, θ₁); also the rotated unit
-    tangents and the rotation coefficients (for the gradient)."""
-    coef = [_rotation_coefficients(y[..., 3:6]), _rotation_coefficients(y[..., 9:12])]
-    t = [_rotate(y[..., 3:6], coef[0], tangents[..., 0, :]),
-         _rotate(y[..., 9:12], coef[1], tangents[..., 1, :])]  # fmt: skip
-    L = length[..., None]
-    control = np.stack([y[..., 0:3], L * t[0], y[..., 6:9], L * t[1]], -2)
-    return control, t, coef
-
-
-def _closest_on_curves(ca, cb, xi, eta, free, iterations: int, tol: float):
-    """Newton on r·a'(ξ) = 0, r·b'(η) = 0 with r = b(η) − a(ξ); only where ``free``; stops early
-    once no parameter moves by more than ``tol``."""
-    for _ in range(iterations):
-        a, a1, a2 = hermite_point(ca, xi, 2)
-        b, b1, b2 = hermite_point(cb, eta, 2)
-        r = b - a
-        f1, f2 = _dot(r, a1), _dot(r, b1)
-        j11, j12 = _dot(r, a2) - _dot(a1, a1), _dot(a1, b1)
-        j22 = _dot(r, b2) + _dot(b1, b1)
-        det = j11 * j22 + j12 * j12  # j21 = −j12
-        d_xi = np.where(free, (j22 * f1 - j12 * f2) / det, 0.0)
-        d_eta = np.where(free, (j11 * f2 + j12 * f1) / det, 0.0)
-        xi, eta = xi - d_xi, eta - d_eta
-        if np.max(np.abs(d_xi) + np.abs(d_eta), initial=0.0) <= tol:
-            break
-    return xi, eta
-
-
-def _closest_on_curve(ca, b, xi, free, iterations: int, tol: float):
-    """Newton on (b − a(ξ))·a'(ξ) = 0; only where ``free``; stops early as above."""
-    for _ in range(iterations):
-        a, a1, a2 = hermite_point(ca, xi, 2)
-        r = b - a
-        d_xi = np.where(free, _dot(r, a1) / (_dot(r, a2) - _dot(a1, a1)), 0.0)
-        xi = xi - d_xi
-        if np.max(np.abs(d_xi), initial=0.0) <= tol:
-            break
-    return xi
-
-
-def _side_gradient(h, length, n, t, coef, y, sign):
-    """∂(sign·n·x(ξ))/∂(x₀, θ₀, x₁, θ₁) at fixed ξ: (…, 12)."""
-    L = length[..., None]
-    parts = []
-    for node in (0, 1):
-        parts.append(sign * h[..., 2 * node, None] * n)
-        v = _cross(t[node], n)  # δ(L t) = L (T δθ) × t  ⇒  n·δ(L t) = L δθ·Tᵀ(t × n)
-        parts.append(
-            sign * h[..., 2 * node + 1, None] * L
-            * _tangent_map_transpose(y[..., 6 * node + 3 : 6 * node + 6], coef[node], v)
-        )  # fmt: skip
-    return np.concatenate(parts, -1)
-
-
-def _crossing_kernel(y, data, xi, eta, free, iterations, tol=0.0):
-    """g + g₀ = |b(η) − a(ξ)| for y (…, 24) = (x, θ) of a₀, a₁, b₀, b₁ at the closest points.
-
-    Returns the distance, ∂/∂y (envelope: exact where the parameters are the closest points),
-    the normal and (ξ, η)."""
-    ca, ta, coef_a = _controls(y[..., :12], data["tangents"][..., 0:2, :], data["length"][..., 0])
-    cb, tb, coef_b = _controls(y[..., 12:], data["tangents"][..., 2:4, :], data["length"][..., 1])
-    xi, eta = _closest_on_curves(ca, cb, xi, eta, free, iterations, tol)
-    ha, hb = _hermite(xi)[0], _hermite(eta)[0]
-    r = _combine(hb, cb) - _combine(ha, ca)
-    dist = np.sqrt(_dot(r, r))
-    n = r / dist[..., None]
-    grad = np.concatenate(
-        [
-            _side_gradient(ha, data["length"][..., 0], n, ta, coef_a, y[..., :12], -1.0),
-            _side_gradient(hb, data["length"][..., 1], n, tb, coef_b, y[..., 12:], 1.0),
-        ],
-        -1,
-    )
-    return dist, grad, n, xi, eta
-
-
-def _line_kernel(y, data, xi, eta, free, iterations, tol=0.0):
-    """g + g₀ = |x_b − a(ξ)| for y (…, 15) = (x, θ) of a₀, a₁ and x_b, ξ the projection of x_b."""
-    ca, ta, coef_a = _controls(y[..., :12], data["tangents"][..., 0:2, :], data["length"][..., 0])
-    b = y[..., 12:15]
-    xi = _closest_on_curve(ca, b, xi, free, iterations, tol)
-    ha = _hermite(xi)[0]
-    r = b - _combine(ha, ca)
-    dist = np.sqrt(_dot(r, r))
-    n = r / dist[..., None]
-    grad = np.concatenate(
-        [_side_gradient(ha, data["length"][..., 0], n, ta, coef_a, y[..., :12], -1.0), n], -1
-    )
-    return dist, grad, n, xi, eta
 
 
 class SlidingGroup(PairGroup):
@@ -196,6 +69,7 @@ class SlidingGroup(PairGroup):
             (keyword; a line pair's node b needs none: any value).
         index: the pairs' numbers (for messages); wire_end: (P, 4) the window's first/last node of
             wire a, then of wire b, is the wire's end (a point may stop there).
+        initial_gap: (P,) gap at t = 0, m (keyword; default 0: the pairs touch, and start closed).
     """
 
     #: a pair keeps its segment while its closest point stays within this fraction of a segment
@@ -211,7 +85,7 @@ class SlidingGroup(PairGroup):
     def __init__(self, stencils, initial_positions, na: int, line: bool, start,
                  normal_law: NormalLaw, friction_law: FrictionLaw | None, index=None,
                  wire_end=None, radius_a=0.0, radius_b=0.0, start_parameters=None, *,
-                 tangents):  # fmt: skip
+                 tangents, initial_gap=None):  # fmt: skip
         n_pairs, k = np.shape(stencils)
         # the initial normal is known once the closest points are: set below
         super().__init__(stencils, normal_law, friction_law, np.zeros((n_pairs, 3)), index)
@@ -236,9 +110,11 @@ class SlidingGroup(PairGroup):
         distance, _, n_initial, _ = self._kinematics_of(
             self.X, np.zeros_like(self.X), hessian=False
         )
-        # pairs touching at t = 0 start closed: a femtometre below their initial distance, more
-        # than the round-off of the iterated projection (~1e-19 m), so g = 0 reads as g ≤ 0
-        self.g0 = distance + self.TOUCH
+        # g = initial_gap at t = 0; pairs touching at t = 0 start closed: a femtometre below their
+        # initial distance, more than the round-off of the iterated projection (~1e-19 m), so
+        # g = 0 reads as g ≤ 0
+        gap0 = np.zeros(n_pairs) if initial_gap is None else np.asarray(initial_gap, float)
+        self.g0 = distance - gap0 + np.where(gap0 == 0, self.TOUCH, 0.0)
         self._n_old = n_initial.copy()
         self.state.normal = n_initial.copy()
         self._w_old = np.zeros((n_pairs, k, 6))  # window unknowns at the last converged step
@@ -263,7 +139,7 @@ class SlidingGroup(PairGroup):
         return nodes, y, data
 
     def _kernel(self, y, data, xi, eta, free, iterations, tol=0.0):
-        kernel = _line_kernel if self.line else _crossing_kernel
+        kernel = line_kernel if self.line else crossing_kernel
         return kernel(y, data, xi, eta, free, iterations, tol)
 
     def _project(self, x, rot, rows):
@@ -414,84 +290,3 @@ class SlidingGroup(PairGroup):
 
     def _rollback_kinematics(self) -> None:
         self.segment, self.parameter = (a.copy() for a in self._committed)
-
-
-def _windows(geometry: StrandGeometry, nodes: npt.NDArray[np.intp], reach: float):
-    """Per node: the first and last node of the shortest stretch of its wire that reaches
-    ``reach`` (m of initial arc length) either side of it, or the wire's end."""
-    offsets, wire = geometry.wire_offsets, geometry.point_wire
-    step = np.linalg.norm(np.diff(geometry.points, axis=0), axis=1)
-    step[offsets[1:-1] - 1] = 0.0  # no length between the last node of a wire and the next
-    arc = np.concatenate([[0.0], np.cumsum(step)])
-    # one increasing key over all wires: wire w's arc length shifted past every earlier wire's
-    key = arc + wire * (arc[-1] + 2 * reach + 1.0)
-    lo, hi = offsets[wire[nodes]], offsets[wire[nodes] + 1] - 1
-    first = np.maximum(np.searchsorted(key, key[nodes] - reach, side="right") - 1, lo)
-    last = np.minimum(np.searchsorted(key, key[nodes] + reach, side="left"), hi)
-    return first, last, np.column_stack([first == lo, last == hi])
-
-
-def sliding_windows(geometry: StrandGeometry, reach: float):
-    """The node windows of the large-sliding pairs: per group of equal window sizes, the pairs
-    ``sel``, the window of each, (P, na + nb) input nodes (wire a's first, from its first node),
-    and ``na``. Each pair's window holds the segments of its wires within ``reach`` (m) of its
-    initial nodes; a line pair's node b (a point against the core) is its own window."""
-    pairs = geometry.pairs
-    a_first, a_last, a_ends = _windows(geometry, pairs.a, reach)
-    b_first, b_last, b_ends = _windows(geometry, pairs.b, reach)
-    is_line = pairs.kind == LINE
-    b_first, b_last = np.where(is_line, pairs.b, b_first), np.where(is_line, pairs.b, b_last)
-    b_ends[is_line] = True
-    sizes = np.column_stack([a_last - a_first + 1, b_last - b_first + 1])
-    out = []
-    for kind in (0, LINE):
-        of_kind = pairs.kind == kind
-        for na, nb in np.unique(sizes[of_kind], axis=0):
-            sel = np.flatnonzero(of_kind & (sizes[:, 0] == na) & (sizes[:, 1] == nb))
-            nodes = np.concatenate(
-                [a_first[sel, None] + np.arange(na), b_first[sel, None] + np.arange(nb)], axis=1
-            )
-            ends = np.column_stack([a_ends[sel], b_ends[sel]])
-            out.append((sel, nodes, int(na), ends))
-    return out
-
-
-def sliding_groups(
-    geometry: StrandGeometry,
-    input_to_block: npt.NDArray[np.int32],
-    settings: ContactSettings,
-    n_owned: int | None = None,
-) -> list[SlidingGroup]:
-    """Large-sliding versions of the geometry's pairs (windows: ``sliding_windows``), with the
-    laws of ``settings``; pairs with windows of equal sizes share a group. With ``n_owned`` (a
-    distributed mesh: the number of dof blocks this rank owns), only the pairs whose window
-    starts on an owned node (``partition.owned_rows``)."""
-    from ..partition import owned_rows
-
-    pairs = geometry.pairs
-    tangents = geometry.tangents()
-    groups = []
-    for sel, nodes, na, ends in sliding_windows(geometry, settings.reach):
-        if n_owned is not None:
-            rows = owned_rows(input_to_block[nodes], n_owned, "contact pairs")
-            sel, nodes, ends = sel[rows], nodes[rows], ends[rows]
-        if not len(sel):
-            continue
-        line = bool(pairs.kind[sel[0]] == LINE)
-        # the closest points start at the pair's nodes: ξ = 0 on the segment they begin
-        # (1 on the last segment when the node ends the window)
-        a_pos, b_pos = pairs.a[sel] - nodes[:, 0], pairs.b[sel] - nodes[:, na]
-        nb = nodes.shape[1] - na
-        start_a = np.minimum(a_pos, na - 2)
-        start_b = np.zeros(len(sel), dtype=np.intp) if line else np.minimum(b_pos, nb - 2)
-        start_parameters = np.column_stack([a_pos - start_a, b_pos - start_b]).astype(float)
-        pair_tangents = np.stack([tangents[pairs.a[sel]], tangents[pairs.b[sel]]], axis=1)
-        normal_law, friction_law = pair_laws(geometry, sel, settings, pair_tangents)
-        groups.append(
-            SlidingGroup(input_to_block[nodes], geometry.points[nodes], na, line,
-                         np.column_stack([start_a, start_b]), normal_law, friction_law,
-                         index=sel, wire_end=ends,
-                         radius_a=pairs.radius_a[sel], radius_b=pairs.radius_b[sel],
-                         start_parameters=start_parameters, tangents=tangents[nodes])
-        )  # fmt: skip
-    return groups

@@ -1,0 +1,83 @@
+"""The contact settings of a strand: the case file's ``[contact]`` section (SI units).
+
+They choose the contact normal (``strand.contact.element.resolve_normal``), the laws of the pairs
+(``strand.strand_contact.pair_laws``) and small or large sliding (``strand.strand_contact``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+from .cable import CableError
+from .contact.element import resolve_normal
+from .contact.errors import ContactError
+
+__all__ = ["ContactSettings", "COMPLIANCES"]
+
+COMPLIANCES = ("penalty", "hertz")
+
+
+@dataclass(frozen=True)
+class ContactSettings:
+    """Contact model settings (SI units).
+
+    Attributes:
+        normal: "director" (the seed paper's: rotated nodal tangents), "neighbour"
+            (translation-only, from neighbour chords), "frozen" (initial radial normal), or
+            "auto" (default): "director" with friction, "frozen" without. With friction the two
+            geometry-following normals converge alike and give the same gaps (Cardinal, 4.3 kN:
+            max error 3.7 vs 3.4 µm); "director" keeps 2-node stencils, so its LU is 1.6× cheaper.
+            A frictionless strand has near-zero-energy modes (wires rolling around the layer
+            below) that only the frozen normal's spurious stiffness holds; its gaps are then only
+            approximate in bending (up to 11 µm). See ``strand.contact.kinematics``.
+        compliance: "hertz" (default: contact mechanics from the wires' radii and moduli and the
+            current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
+            contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
+            ``strand.contact.hertz``) or "penalty" (the seed paper's: a penalty K_N, and friction
+            reaching μP after an elastic slip g_lim). k_point, k_line and g_lim apply to "penalty"
+            only. The default has no free parameter: every stiffness follows from the wires.
+        k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
+        k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
+            line pair gets k_line × its tributary length.
+        g_lim: slip at which friction reaches μP (elastic slip, K_T = μP/g_lim), m.
+        friction: use the Coulomb coefficients of the cable (False: frictionless).
+        model: "small" sliding (pairs fixed at t = 0, ``strand.contact.element``) or "large"
+            sliding (pairs re-projected at every iteration, ``strand.contact.sliding``: the
+            baseline).
+        reach: large sliding only: sliding distance reserved either side of each initial pair,
+            m (its window holds every segment of the two wires within reach).
+    """
+
+    normal: str = "auto"
+    compliance: str = "hertz"
+    k_point: float = 5e7
+    k_line: float = 5e9
+    g_lim: float = 5e-6
+    friction: bool = True
+    model: str = "small"
+    reach: float = 1e-3
+
+    def __post_init__(self):
+        try:
+            object.__setattr__(self, "normal", resolve_normal(self.normal, self.friction))
+        except ContactError as e:  # strand.case reports CableError as a [contact] error
+            raise CableError(str(e)) from None
+        if self.compliance not in COMPLIANCES:
+            raise CableError(
+                f"contact compliance {self.compliance!r} is unknown; choose "
+                f"{' or '.join(COMPLIANCES)}"
+            )
+        if self.model not in ("small", "large"):
+            raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
+        for name in ("k_point", "k_line", "g_lim", "reach"):
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and value > 0):
+                raise CableError(f"contact {name} = {value!r}: must be a positive number")
+        if self.compliance != "penalty":
+            defaults = {f.name: f.default for f in fields(self)}
+            given = [n for n in ("k_point", "k_line", "g_lim") if getattr(self, n) != defaults[n]]
+            if given:
+                raise CableError(
+                    f'contact {", ".join(given)} apply to compliance = "penalty" only (the '
+                    f"{self.compliance} compliance follows from the wires); set one or the other"
+                )

@@ -9,6 +9,8 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 from strand.contact import (
+    ContactError,
+    ElasticSlip,
     PenaltyLaw,
     beam_nodes,
     candidate_pairs,
@@ -16,6 +18,7 @@ from strand.contact import (
     hertz_laws,
     locate_nodes,
     node_pairs,
+    sliding_terms,
 )
 from strand.contact.hertz import point_coefficient
 from strand.mesh import beam_space, polyline_mesh
@@ -80,11 +83,36 @@ def test_bad_pairs_are_refused_in_one_line():
         candidate_pairs(V, a, a, R, R, reach=1e-3)
     with pytest.raises(ValueError, match="radii must be positive"):
         node_pairs(V, a[2], b[2], 0.0, R)
+    pairs = candidate_pairs(V, a, b, R, R, reach=1e-3)
+    with pytest.raises(ContactError, match="share no cell of V"):
+        sliding_terms(V, pairs, [a[[0, 2, 1, 3, 4]], b], 1e-3, PenaltyLaw(K_N))
+    with pytest.raises(ContactError, match="on none of the chains"):
+        sliding_terms(V, pairs, [a], 1e-3, PenaltyLaw(K_N))
     # three cells at one node: not a chain of cells
     pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
     star = beam_space(polyline_mesh(MPI.COMM_WORLD, pts, [[0, 1], [0, 2], [0, 3]]))
     with pytest.raises(ValueError, match="joins 3 cells"):
         beam_nodes(star)
+
+
+def test_large_sliding_windows_stop_at_the_beams_ends_and_cut_the_laws_per_pair():
+    """Line pairs along beam b lying on a: windows of 20 mm either side, shorter near a's ends,
+    so the pairs fall into groups by window size, each with its own pairs' law values."""
+    V, a, b = two_beams([1.0, 0.0, 0.0], 0.0, length=0.1, n=20, n_b=13)
+    pairs = candidate_pairs(V, a, b, R, R, reach=1e-6, line=True)
+    k, mu = K_N * (1 + np.arange(len(pairs))), 0.1 + 0.01 * np.arange(len(pairs))
+    groups = sliding_terms(V, pairs, [a, b], 0.02, PenaltyLaw(k), ElasticSlip(mu, 1e-6))
+    assert len(groups) > 1
+    assert sorted(np.concatenate([g.index for g in groups]).tolist()) == list(range(len(pairs)))
+    for g in groups:
+        np.testing.assert_array_equal(g.normal_law.k, k[g.index])
+        np.testing.assert_array_equal(g.friction_law.mu, mu[g.index])
+        assert g.friction_law.g_lim == 1e-6
+        window = g.X[:, : g.na, 0]  # along beam a: 20 mm either side of node a, or to a's end
+        x_a = pairs.positions[g.index, 0, 0]
+        np.testing.assert_array_equal(g.X[:, g.na], pairs.positions[g.index, 1])  # b: its own
+        assert np.all((window[:, 0] <= x_a - 0.02 + 1e-12) | (window[:, 0] == -0.05))
+        assert np.all((window[:, -1] >= x_a + 0.02 - 1e-12) | (window[:, -1] == 0.05))
 
 
 def test_hertz_laws_of_crossed_wires_use_their_crossing_angle():
@@ -151,3 +179,66 @@ def test_contact_on_prescribed_nodes_keeps_newtons_rate(pressed_by_a_prescribed_
     result = solver.solve()
     assert result.converged and result.iterations <= 2, result.residuals
     assert result.residuals[1] < 1e-3 * K_N * step, result.residuals
+
+
+def test_large_sliding_pairs_from_node_pairs_press_then_follow_the_slide():
+    """Beam a (lower, along x) lifted as a rigid body into beam b (upper, along y, clamped at its
+    ends) from ``gap0`` below it, then slid along b by two cells. Large-sliding pairs built from
+    the same ``NodePairs`` and the beams' node chains give the small-sliding pair's gap and force
+    while nothing slides (the contact and b in series); slid, they press b at its new point,
+    where b is 3 % stiffer, which a pair fixed at the first nodes would not see."""
+    gap0, h = 2e-6, 0.2 / 40  # m: the initial gap and the cell size
+    V, a, b = two_beams([0.0, 1.0, 0.0], gap0)
+    pairs = candidate_pairs(V, a, b, R, R, reach=1e-4)
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(2 * R, E, NU))
+    lift, slide = fem.Constant(V.mesh, 0.0), fem.Constant(V.mesh, 0.0)
+    bcs = [fem.dirichletbc(np.zeros(6), b[[0, -1]], V)]
+    bcs += [fem.dirichletbc(0.0, 6 * a + c, V.sub(c)) for c in (0, 3, 4, 5)]
+    bcs += [fem.dirichletbc(slide, 6 * a + 1, V.sub(1)), fem.dirichletbc(lift, 6 * a + 2, V.sub(2))]
+
+    def k_series(node):  # the contact in series with b's own stiffness at ``node``
+        alone = NewtonSolver(
+            beam.residual(), w, bcs, terms=[NodalLoad([node], [[0, 0, 1, 0, 0, 0]], 0.05)]
+        )
+        assert alone.solve().converged
+        k_beam = 0.05 / w.x.array.reshape(-1, 6)[node, 2]
+        alone.destroy()
+        w.x.array[:] = 0.0
+        return 1.0 / (1.0 / K_N + 1.0 / k_beam)
+
+    k_middle, k_moved = k_series(b[20]), k_series(b[22])
+    assert k_moved > 1.02 * k_middle
+    states = {}
+    for model in ("small", "large"):
+        if model == "small":
+            terms = [contact_terms(pairs, PenaltyLaw(K_N))]
+        else:
+            terms = sliding_terms(V, pairs, [a, b], 15e-3, PenaltyLaw(K_N))
+        solver = NewtonSolver(beam.residual(), w, bcs, terms=terms)
+        for value in (0.5 * gap0, 3 * gap0):
+            lift.value = value
+            assert solver.solve().converged
+            solver.commit()
+            states[model, value] = (terms[0].state.gap[0], terms[0].state.force[0])
+        if model == "large":
+            for value in np.linspace(0.0, 2 * h, 9)[1:]:
+                slide.value = value
+                assert solver.solve().converged
+                solver.commit()
+            contact = terms[0]
+        solver.destroy()
+        w.x.array[:] = 0.0
+        lift.value = slide.value = 0.0
+    assert len(terms) == 1 and terms[0].index.tolist() == [0]
+    assert states["large", 0.5 * gap0] == pytest.approx((0.5 * gap0, 0.0), rel=1e-6)
+    for model in ("small", "large"):
+        assert states[model, 3 * gap0][1] == pytest.approx(k_middle * 2 * gap0, rel=1e-6)
+    assert states["large", 3 * gap0] == pytest.approx(states["small", 3 * gap0], rel=1e-6)
+    # slid by two cells: the contact point is on b at y = 2h (its node 22), the normal vertical but
+    # for b's slope there (1e-5)
+    j, eta = contact.segment[0, 1], contact.parameter[0, 1]
+    y = contact.X[0, contact.na + j : contact.na + j + 2, 1] @ [1 - eta, eta]
+    assert y == pytest.approx(2 * h, abs=1e-6)
+    assert contact.state.force[0] == pytest.approx(k_moved * 2 * gap0, rel=1e-4)
+    np.testing.assert_allclose(contact.state.normal[0], [0.0, 0.0, 1.0], atol=1e-4)

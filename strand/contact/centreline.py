@@ -101,7 +101,7 @@ def _side_gradient(h, length, n, t, coef, y, sign):
 
 
 def crossing_kernel(y, data, xi, eta, free, iterations, tol=0.0):
-    """g + g₀ = |b(η) − a(ξ)| for y (…, 24) = (x, θ) of a₀, a₁, b₀, b₁ at the closest points.
+    """g + g₀ = ‖b(η) − a(ξ)‖ for y (…, 24) = (x, θ) of a₀, a₁, b₀, b₁ at the closest points.
 
     Returns the distance, ∂/∂y (envelope: exact where the parameters are the closest points),
     the normal and (ξ, η)."""
@@ -123,7 +123,7 @@ def crossing_kernel(y, data, xi, eta, free, iterations, tol=0.0):
 
 
 def line_kernel(y, data, xi, eta, free, iterations, tol=0.0):
-    """g + g₀ = |x_b − a(ξ)| for y (…, 15) = (x, θ) of a₀, a₁ and x_b, ξ the projection of x_b."""
+    """g + g₀ = ‖x_b − a(ξ)‖ for y (…, 15) = (x, θ) of a₀, a₁ and x_b, ξ the projection of x_b."""
     ca, ta, coef_a = _controls(y[..., :12], data["tangents"][..., 0:2, :], data["length"][..., 0])
     b = y[..., 12:15]
     xi = _closest_on_curve(ca, b, xi, free, iterations, tol)

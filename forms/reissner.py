@@ -34,6 +34,7 @@ consistent and symmetric (for conservative loads).
 from __future__ import annotations
 
 import math
+import numbers
 
 import ufl
 
@@ -106,9 +107,14 @@ class CircularSection:
     mix steel and aluminium wires. The shear coefficient defaults to Cowper's 6(1+ν)/(7+6ν).
     ``torsional_stiffness`` (N m²) replaces GJ = G πd⁴/32 when given: for a benchmark that sets
     it apart, or a section whose torsion is not that of a solid circle.
+
+    Given numbers, the stiffnesses below are numbers. ``ReissnerBeam`` puts them in its forms as
+    cell-wise data (``on_mesh``), not as literals: a literal is part of the compiled kernel, so
+    every new diameter or modulus would cost a new FFCx compilation.
     """
 
     def __init__(self, d, E, nu, shear_coefficient=None, torsional_stiffness=None):
+        self._arguments = (d, E, nu, shear_coefficient, torsional_stiffness)
         self.d, self.E, self.nu = d, E, nu
         self.torsional_stiffness = torsional_stiffness
         self.G = E / (2 * (1 + nu))
@@ -118,6 +124,24 @@ class CircularSection:
         self.area = math.pi * d**2 / 4
         self.second_moment = math.pi * d**4 / 64
         self.polar_moment = math.pi * d**4 / 32
+
+    def on_mesh(self, mesh) -> CircularSection:
+        """This section with each number among its arguments held by a cell-wise (DG0) function
+        of ``mesh``; ``Constant`` and ``Function`` arguments are kept. Its forms are those of a
+        strand's layer sections (cell-wise d, E, ν), so one compiled kernel serves both."""
+        from dolfinx import fem  # here, not at the top: the forms import without dolfinx
+
+        space = fem.functionspace(mesh, ("DG", 0))
+
+        def cell_wise(value, name):
+            if not isinstance(value, numbers.Real):
+                return value  # None, or already data of the form
+            f = fem.Function(space, name=name)
+            f.x.array[:] = value
+            return f
+
+        names = ("d", "E", "nu", "shear_coefficient", "torsional_stiffness")
+        return CircularSection(*map(cell_wise, self._arguments, names))
 
     @property
     def EA(self):
@@ -153,7 +177,8 @@ class ReissnerBeam:
 
     Args:
         w: the (6,)-valued P1 unknown (u, θ) on a 1D mesh in 3D.
-        section: the section law (``CircularSection``).
+        section: the section law (``CircularSection``); the forms hold its numbers as
+            cell-wise data (``CircularSection.on_mesh``).
         frame: initial frame Λ0 = [t, e2, e3] per cell; default ``tangent_frame(unit_tangent(mesh))``.
         dx: integration measure; default one-point rule (reduced integration).
     """
@@ -162,7 +187,7 @@ class ReissnerBeam:
         check_beam_unknown(w)
         mesh = w.function_space.mesh
         self.w = w
-        self.section = section
+        self.section = section.on_mesh(mesh)
         self.t = unit_tangent(mesh)
         self.frame = tangent_frame(self.t) if frame is None else frame
         self.dx = dx if dx is not None else ufl.Measure("dx", mesh, metadata=REDUCED_QUADRATURE)

@@ -9,7 +9,10 @@ from scipy.spatial.transform import Rotation
 
 from beam_cases import NU, D, E, cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
-from strand.mesh import beam_space, node_to_block, polyline_mesh
+from strand.cable import cardinal
+from strand.geometry import build_geometry
+from strand.mesh import beam_space, cable_mesh, node_to_block, polyline_mesh, straight_beam_mesh
+from strand.model import layer_section
 from strand.output import section_force_values
 from strand.solver import LoadStepper
 
@@ -107,6 +110,23 @@ def test_torsional_stiffness_set_apart_from_E_and_nu():
     kappa_GA = section.shear_coefficient * E / (2 * (1 + NU)) * np.pi * D**2 / 4
     bending = P * L**3 / (3 * S["EI"]) * (1 - 1 / (4 * n**2))
     assert case.tip_u[2] == pytest.approx(bending + P * L / kappa_GA, rel=1e-4)
+
+
+def test_one_compiled_kernel_serves_every_section():
+    """Section numbers are data of the beam forms, not literals: beams of other diameters and
+    moduli, and Cardinal's cell-wise steel and aluminium layers, have the same residual and
+    tangent forms (the UFL signature keys FFCx's cache), so the JIT compiles them once."""
+    mesh = straight_beam_mesh(MPI.COMM_WORLD, 1.0, 4)
+    w = fem.Function(beam_space(mesh))
+    cmesh = cable_mesh(build_geometry(cardinal(), 0.02, 4e-3))
+    w_strand = fem.Function(beam_space(cmesh.mesh))
+    beams = [
+        ReissnerBeam(w, CircularSection(D, E, NU)),
+        ReissnerBeam(w, CircularSection(3.32e-3, 65e9, 0.33)),
+        ReissnerBeam(w_strand, layer_section(cmesh)),
+    ]
+    for form in (lambda b: b.residual(), lambda b: ufl.derivative(b.residual(), b.w)):
+        assert len({form(b).signature() for b in beams}) == 1
 
 
 def helix_points(radius, lay_angle, length, n):

@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 from dolfinx import fem
 from mpi4py import MPI
+from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
 from forms import CircularSection, ReissnerBeam
-from strand.cable import CableError, cable_from_dict, cardinal
+from strand.cable import CableError
 from strand.contact.element import ContactGroup
 from strand.contact.hertz import compliance as compliance_of
 from strand.contact.hertz import mindlin_ratio, point_coefficient
@@ -26,7 +27,7 @@ from strand.contact.laws import (
     PenaltyLaw,
 )
 from strand.contact_settings import ContactSettings
-from strand.geometry import LINE, POINT, build_geometry
+from strand.geometry import LINE, POINT
 from strand.mesh import beam_space, input_to_block, polyline_mesh
 from strand.problem import StrandProblem
 from strand.setups.saddle import saddle_weights
@@ -81,20 +82,6 @@ def crossed_pair(
     full = np.full(n_pairs, 1.0)
     laws = pair_laws(compliance, line, angle, n_pairs)
     return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0)
-
-
-def fd_tangent(group, w: np.ndarray, step: float = 1e-9) -> np.ndarray:
-    """Central finite differences of a pair group's residual (P, m) w.r.t. all its stencil dofs
-    (m: the group's ``dofs`` layout, or all 6k)."""
-    P, k = group.stencils.shape
-    K = np.zeros((P, len(getattr(group, "dofs", range(6 * k))), 6 * k))
-    for j in range(6 * k):
-        node, comp = divmod(j, 6)
-        wp, wm = w.copy(), w.copy()
-        wp[group.stencils[:, node], comp] += step
-        wm[group.stencils[:, node], comp] -= step
-        K[:, :, j] = (group.evaluate(wp, False)[0] - group.evaluate(wm, False)[0]) / (2 * step)
-    return K
 
 
 @pytest.mark.parametrize(("normal", "line"), KINDS)
@@ -336,27 +323,6 @@ def test_small_rigid_rotation_makes_no_slip():
     assert slip < 1e-3 * np.linalg.norm(omega) * (R_A + R_B)
 
 
-def seven_wire(lay_angle=6.06, length=0.2, h_max=4e-3):
-    cable = cable_from_dict(
-        {
-            "name": "1+6",
-            "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
-            "layer": [
-                {
-                    "wires": 6,
-                    "diameter": 3.34e-3,
-                    "E": 180e9,
-                    "nu": 0.3,
-                    "lay_angle": lay_angle,
-                    "lay": "S",
-                    "friction": 0.5,
-                }
-            ],
-        }
-    )
-    return build_geometry(cable, length, h_max)
-
-
 def test_helix_on_core_line_load():
     """Contact line load of a tensioned helix on its core: X = T sin²α / r (docs/theory.md §5.6)."""
     geometry = seven_wire(lay_angle=12.0)
@@ -377,7 +343,7 @@ def test_helix_on_core_line_load():
     res = problem.pair_results()
     z = geometry.points[pairs.b, 2]
     inside = np.abs(z - geometry.length / 2) < geometry.length / 4
-    X = res["force"][inside].sum() / pairs.tributary[inside].sum()  # N per m of wire
+    X = res.force[inside].sum() / pairs.tributary[inside].sum()  # N per m of wire
     print(f"X = {X:.1f} N/m, T sin²α/r = {T_wire * np.sin(alpha) ** 2 / r:.1f} N/m")
     assert X == pytest.approx(T_wire * np.sin(alpha) ** 2 / r, rel=0.02)
     assert T_wire == pytest.approx(20e3 / 7, rel=0.2)  # sanity: the wires share the load
@@ -411,12 +377,6 @@ def test_newton_converges_quadratically_on_a_seven_wire_strand(normal):
     assert np.mean(problem.contact[0].committed_force > 0) > 0.95  # all but the end pairs
 
 
-def nineteen_wire(length=0.1, h_max=4e-3):
-    """Core, layer 1 and layer 2 of Cardinal: line pairs and crossings."""
-    cable = cardinal()
-    return build_geometry(type(cable)("1+6+12", cable.layers[:3]), length, h_max)
-
-
 @pytest.mark.parametrize("normal", ["director", "neighbour"])
 def test_gap_consistency_on_a_bent_strand(normal):
     """The element's gaps match the gaps measured on the deformed centrelines (within 2 µm).
@@ -435,7 +395,7 @@ def test_gap_consistency_on_a_bent_strand(normal):
     assert deflection > 1e-4
     x = problem.positions()
     measured = centreline_gaps(geometry, x) - centreline_gaps(geometry, geometry.points)
-    element = problem.pair_results()["gap"]
+    element = problem.pair_results().gap
     pairs = geometry.pairs
     for kind in (LINE, POINT):
         sel = pairs.kind == kind

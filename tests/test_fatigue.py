@@ -11,7 +11,7 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from test_run import SEVEN_WIRE
+from strand_cases import SEVEN_WIRE
 
 from beam_cases import cantilever
 from forms import CircularSection, ReissnerBeam

@@ -14,16 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_run import SEVEN_WIRE
+from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 from strand.cable import cardinal
 from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.model import strand_stencils
 from strand.partition import DistributionError, owned_rows, slab_destinations
-
-MPIRUN = Path(sys.executable).parent / "mpirun"
-needs_mpirun = pytest.mark.skipif(not MPIRUN.exists(), reason="no mpirun beside the Python")
 
 #: relative agreement (to each column's largest value) required of a distributed run
 RTOL = 1e-8

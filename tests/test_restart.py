@@ -12,8 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_mpi import MPIRUN, needs_mpirun
-from test_run import SEVEN_WIRE
+from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 from strand.case import load_case
 from strand.checkpoint import read_checkpoint, write_checkpoint

@@ -11,7 +11,7 @@ from functools import partial
 
 import numpy as np
 import pytest
-from test_run import SEVEN_WIRE
+from strand_cases import SEVEN_WIRE
 
 from strand import kinds
 from strand.case import CaseError, case_from_dict, load_case

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_contact import fd_tangent, nineteen_wire, seven_wire
+from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
 from strand.contact.laws import ElasticSlip, PenaltyLaw
 from strand.contact.sliding import SlidingGroup, SlidingWindowError
@@ -91,7 +91,7 @@ def test_large_and_small_sliding_agree_when_sliding_is_small():
         )
         LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
         u_tension = problem.setup.end_displacement()
-        forces = problem.pair_results()["force"].copy()
+        forces = problem.pair_results().force.copy()
         LoadStepper(problem.solver, 100.0, 5.0, max_step=200.0).ramp(
             problem.setup.set_lateral, 0.0, 600.0
         )

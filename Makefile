@@ -1,6 +1,6 @@
 # The two commands a new user needs; both set the environment up first (idempotent).
 #   make run [CASE=my_case.toml]   the main job (replaces that case's earlier results)
-#   make test                      the whole test suite
+#   make test                      lint (ruff), then the whole test suite
 PY := .venv/bin/python
 CASE ?=
 
@@ -11,8 +11,9 @@ setup:
 run: setup
 	$(PY) -m strand run $(CASE) --overwrite
 
-test: setup
+test: lint
 	$(PY) -m pytest
 
 lint: setup
-	.venv/bin/ruff check . && .venv/bin/ruff format --check .
+	.venv/bin/ruff check .
+	.venv/bin/ruff format --check .

@@ -1,5 +1,6 @@
 """Strand cases and helpers shared by several test files: a 1+6 case file, strand geometries,
-the finite-difference tangent of a contact group, and the ``mpirun`` beside the Python."""
+the finite-difference tangent of a contact group, the ``mpirun`` beside the Python, and a results
+folder holding an earlier run."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import numpy as np
 import pytest
 
 from strand.cable import cable_from_dict, cardinal
+from strand.folder import RUN_MARKER
 from strand.geometry import StrandGeometry, build_geometry
 
 #: a quick 1+6 case file (0.1 m of strand, no plots)
@@ -88,3 +90,25 @@ def fd_tangent(group, w: np.ndarray, step: float = 1e-9) -> np.ndarray:
         wm[group.stencils[:, node], comp] -= step
         K[:, :, j] = (group.evaluate(wp, False)[0] - group.evaluate(wm, False)[0]) / (2 * step)
     return K
+
+
+#: some of the files a saddle run with fields and plots writes at the top of its folder
+RUN_FILES = ("fields.xdmf", "fields.h5", "load_deflection.png", "steps.csv", "summary.txt")
+
+
+def contents(folder: Path) -> dict[str, int]:
+    """Every path under ``folder`` with its modification time (ns)."""
+    return {str(p.relative_to(folder)): p.stat().st_mtime_ns for p in folder.rglob("*")}
+
+
+def earlier_run(folder: Path) -> Path:
+    """A folder holding a run: its marker, files, a VTX field folder, a sub-folder that is another
+    run's own (e.g. a comparison's), and a hidden file."""
+    (folder / "fields.bp").mkdir(parents=True)
+    (folder / "fields.bp" / "data.0").write_text("steps")
+    for name in (RUN_MARKER, *RUN_FILES):
+        (folder / name).write_text(name)
+    (folder / "small").mkdir()
+    (folder / "small" / RUN_MARKER).write_text("another run")
+    (folder / ".keep").write_text("")
+    return folder

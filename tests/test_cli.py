@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_run import SEVEN_WIRE
+from strand_cases import SEVEN_WIRE, contents, earlier_run
 
 from strand import __version__
 from strand.case import CaseError, load_case
@@ -90,30 +90,27 @@ def test_version(capsys):
     assert capsys.readouterr().out.strip() == f"strand {__version__}"
 
 
-def test_a_second_run_into_a_folder_is_refused_and_overwrite_replaces_it(tmp_path, capsys):
-    """Run 1 writes fields and figures; run 2 into the same folder is refused (nothing touched);
-    with --overwrite and those outputs off, none of run 1's files is left beside run 2's."""
+def test_the_command_line_keeps_one_run_per_folder(tmp_path, capsys):
+    """The results-folder rules (tests/test_folder.py) as ``strand run`` applies them: a run into
+    a folder holding an earlier run is refused and touches nothing; with --overwrite none of the
+    earlier run's fields and figures is left (this run writes no VTX series, output.vtx = false,
+    and no figures); a folder of other files is refused even then."""
     case = tmp_path / "seven.toml"
-    case.write_text(SEVEN_WIRE.replace("plots = false", "plots = true"))
-    out = tmp_path / "out"
-    assert main(["run", str(case), "--out", str(out), "--set", "load.cycle=[1.0]"]) == 0
-    first = {p.name: p.stat().st_mtime_ns for p in out.iterdir()}
-    assert {"fields.xdmf", "fields.h5", "fields.bp", "load_deflection.png"} <= set(first)
-    capsys.readouterr()
+    case.write_text(SEVEN_WIRE)
+    out = earlier_run(tmp_path / "out")
+    first = contents(out)
     assert main(["run", str(case), "--out", str(out)]) == 2
     assert "holds the results of an earlier run" in one_line_error(capsys)
-    assert {p.name: p.stat().st_mtime_ns for p in out.iterdir()} == first
-    off = ["--set", "output.fields=false", "--set", "output.plots=false"]
+    assert contents(out) == first
+    off = ["--set", "output.vtx=false", "--set", "output.plots=false", "--set", "load.cycle=[1.0]"]
     assert main(["run", str(case), "--out", str(out), "--overwrite", *off]) == 0
     second = {p.name for p in out.iterdir()}
-    assert not any(n.startswith("fields") or n.endswith(".png") for n in second), second
-    assert "fields = False" in (out / "settings.txt").read_text()
-    no_vtx = tmp_path / "no_vtx"
-    assert main(["run", str(case), "--out", str(no_vtx), "--set", "output.vtx=false",
-                 "--set", "output.plots=false", "--set", "load.cycle=[1.0]"]) == 0  # fmt: skip
-    assert (no_vtx / "fields.xdmf").exists() and not (no_vtx / "fields.bp").exists()
+    assert "fields.xdmf" in second and "fields.bp" not in second, second
+    assert not any(n.endswith(".png") for n in second), second
+    assert "vtx = False" in (out / "settings.txt").read_text()
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "notes.txt").write_text("not a run")
+    capsys.readouterr()
     assert main(["run", str(case), "--out", str(tmp_path / "mine"), "--overwrite"]) == 2
     assert "not a strand run's" in one_line_error(capsys)
     assert (tmp_path / "mine" / "notes.txt").read_text() == "not a run"
@@ -144,6 +141,7 @@ def test_ctrl_c_stops_at_the_last_converged_step_and_keeps_everything(tmp_path):
     assert "interrupted" in text
     summary = (out / "summary.txt").read_text()
     assert summary.startswith("INTERRUPTED:") and "stopped: leg" in summary
+    assert not list(out.glob("fields*"))  # output.fields = false: no field files
     with open(out / "steps.csv") as f:
         steps = list(csv.DictReader(f))
     assert any(s["stage"] == "leg 1" for s in steps)

@@ -6,6 +6,7 @@ import csv
 
 import numpy as np
 import pytest
+from strand_cases import SEVEN_WIRE
 
 from strand.cable import cardinal
 from strand.case import CaseError, load_case
@@ -13,37 +14,6 @@ from strand.cli import main
 from strand.contact.element import ContactGroup
 from strand.contact.laws import PenaltyLaw
 from strand.post import bending_stiffness_bounds, fibre_model
-
-SEVEN_WIRE = """
-[cable]
-name = "1+6"
-[cable.core]
-diameter = 3.34e-3
-E = 210e9
-nu = 0.3
-friction = 0.3
-[[cable.layer]]
-wires = 6
-diameter = 3.34e-3
-E = 180e9
-nu = 0.3
-lay_angle = 6.06
-lay = "S"
-friction = 0.5
-
-[mesh]
-length = 0.1
-[load]
-tension = 10e3
-lateral = 300.0
-cycle = [1.0, 0.0]
-[steps]
-tension = 5e3
-lateral = 100.0
-lateral_max = 150.0
-[output]
-plots = false
-"""
 
 
 def test_default_case_is_the_seed_papers_test():

@@ -1,0 +1,56 @@
+"""The results-folder rules (``strand.folder``): a folder never holds two runs' files, an earlier
+run's are replaced only when asked, a folder of other files is never written into. The command
+line applies them through ``prepare_results_folder`` (end to end: tests/test_cli.py)."""
+
+from __future__ import annotations
+
+import pytest
+from strand_cases import contents, earlier_run
+
+from strand.folder import RUN_MARKER, FolderError, prepare_results_folder
+
+
+def test_a_new_folder_is_created_and_an_empty_one_used(tmp_path):
+    assert prepare_results_folder(tmp_path / "a" / "b") == tmp_path / "a" / "b"
+    assert (tmp_path / "a" / "b").is_dir()
+    (tmp_path / "empty" / "sub").mkdir(parents=True)
+    (tmp_path / "empty" / ".hidden").write_text("")
+    before = contents(tmp_path / "empty")
+    for overwrite in (False, True):  # sub-folders and hidden files are no run's
+        assert prepare_results_folder(tmp_path / "empty", overwrite) == tmp_path / "empty"
+    assert contents(tmp_path / "empty") == before
+
+
+def test_a_folder_holding_a_run_is_refused_untouched(tmp_path):
+    out = earlier_run(tmp_path / "out")
+    before = contents(out)
+    with pytest.raises(FolderError, match="holds the results of an earlier run; give another"):
+        prepare_results_folder(out)
+    assert contents(out) == before
+
+
+def test_overwrite_removes_the_earlier_runs_files_and_fields_only(tmp_path):
+    out = earlier_run(tmp_path / "out")
+    assert prepare_results_folder(out, overwrite=True) == out
+    assert set(contents(out)) == {"small", f"small/{RUN_MARKER}", ".keep"}
+
+
+@pytest.mark.parametrize("overwrite", [False, True])
+def test_a_folder_of_other_files_is_never_written_into(tmp_path, overwrite):
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("not a run")
+    (mine / "fields.bp").mkdir()
+    before = contents(mine)
+    with pytest.raises(FolderError, match="holds files that are not a strand run's"):
+        prepare_results_folder(mine, overwrite)
+    assert contents(mine) == before and (mine / "notes.txt").read_text() == "not a run"
+
+
+def test_a_file_is_not_a_results_folder(tmp_path):
+    path = tmp_path / "case.toml"
+    path.write_text("")
+    with pytest.raises(FolderError, match="is a file, not a folder"):
+        prepare_results_folder(path)
+    with pytest.raises(FolderError, match="cannot create the results folder"):
+        prepare_results_folder(path / "sub")

@@ -21,7 +21,6 @@ import time
 from strand.analytical import StickSlipLaw
 from strand.cable import cardinal
 from strand.case import case_from_dict
-from strand.kinds.bending import uniform_bending_report
 from strand.post import bending_stiffness_bounds
 from strand.run import run_case
 
@@ -56,8 +55,8 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
         t0 = time.perf_counter()
         result = run_case(case, folder, stream=io.StringIO(), overwrite=True)
         seconds = time.perf_counter() - t0
-        report = uniform_bending_report(case.cable, case.load.tension, folder)
-        moments = {k: (m, law) for k, m, law, _ in report.get("table", [])}
+        report = result.reference  # the run's BendingReport (None before a bending step)
+        moments = {k: (m, law) for k, m, law, _ in (report.table if report else [])}
         rows.append((name, report, moments, seconds, result))
         print(f"  done: {name} ({seconds:.0f} s)", flush=True)
     ei_min, ei_max = bending_stiffness_bounds(cardinal())
@@ -72,11 +71,11 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
         if not report:
             print(f"{name:24s} FAILED before the first bending step: {result.failure}")
             continue
-        line = f"{name:24s} {report['initial_slope'] / report['ei_max']:13.3f}"
+        line = f"{name:24s} {report.initial_slope / report.ei_max:13.3f}"
         line += "".join(
             f" {moments[k][0]:13.2f}" if k in moments else f" {'-':>13s}" for k in KAPPAS
         )
-        onset = " ".join(f"{v:6.3f}" for v in report["slip_onset"])
+        onset = " ".join(f"{v:6.3f}" for v in report.slip_onset)
         line += f" {onset:>34s} {seconds:7.0f} {result.iterations:5d}"
         if result.failure:
             line += f"  FAILED: {result.failure}"

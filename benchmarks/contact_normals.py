@@ -52,12 +52,12 @@ def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
     out["P"] = problem.setup.lateral
     x = problem.positions()
     measured = centreline_gaps(geometry, x) - centreline_gaps(geometry, geometry.points)
-    error = problem.pair_results()["gap"] - measured
+    error = problem.pair_results().gap - measured
     out["gap_error"] = [
         (np.sqrt(np.mean(error[m] ** 2)), np.abs(error[m]).max())
         for m in (geometry.pairs.interface == i for i in range(4))
     ]
-    out["penetration"] = -problem.pair_results()["gap"].min()
+    out["penetration"] = -problem.pair_results().gap.min()
     return out
 
 

@@ -19,17 +19,11 @@ from pathlib import Path
 
 from strand.cable import cardinal
 from strand.contact_settings import ContactSettings
+from strand.fatigue_recorders import PairHistory, WireSectionHistory
 from strand.geometry import build_geometry
 from strand.post import CellEvaluator, cell_results
 from strand.problem import StrandProblem
-from strand.recorders import (
-    AxialForceTable,
-    FieldSeries,
-    PairHistory,
-    RunStep,
-    StepContext,
-    WireSectionHistory,
-)
+from strand.recorders import AxialForceTable, FieldSeries, RunStep, StepContext
 from strand.solver import LoadStepper, NewtonOptions
 
 

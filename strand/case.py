@@ -100,11 +100,6 @@ from .settings import (
 __all__ = [
     "Case",
     "CaseError",
-    "MeshSettings",
-    "LoadSettings",
-    "StepSettings",
-    "OutputSettings",
-    "FatigueSettings",
     "load_case",
     "case_from_dict",
     "parse_settings",

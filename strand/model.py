@@ -20,6 +20,7 @@ from .contact_settings import ContactSettings
 from .geometry import StrandGeometry
 from .mesh import CableMesh, beam_space, cable_mesh, input_to_block
 from .output import cell_function
+from .pair_results import PairResults
 from .partition import DistributionError, owned_rows
 from .strand_contact import contact_groups, pair_stencils, sliding_groups, sliding_windows
 
@@ -170,11 +171,9 @@ class StrandModel:
                 self.comm.Allreduce(MPI.IN_PLACE, value, op=MPI.SUM)
         return out
 
-    def pair_results(self) -> dict[str, Array]:
-        """Per geometry pair: gap (m), normal force (N), traction magnitude (N), slipping flag,
-        and the vectors (P, 3) of the friction force ``friction`` (N, on a), the normal a → b
-        ``normal``, and the friction history since t = 0 (``FrictionHistory``): ``slip`` and
-        ``sliding`` (m), with the dissipated energy ``work`` (J)."""
+    def pair_results(self) -> PairResults:
+        """Every geometry pair's gap, forces, slip state and friction history at the current
+        state (``PairResults``), on every rank."""
         per_group = []
         for g in self.contact:
             s, h = g.state, g.history
@@ -185,5 +184,4 @@ class StrandModel:
             })  # fmt: skip
         shapes = {k: () for k in ("gap", "force", "traction", "work", "slipping")}
         out = self.gather_pairs(per_group, shapes | dict.fromkeys(PAIR_VECTORS, (3,)))
-        out["slipping"] = out["slipping"] > 0.5
-        return out
+        return PairResults(**{**out, "slipping": out["slipping"] > 0.5})

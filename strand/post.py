@@ -155,20 +155,6 @@ def bending_stiffness_bounds(cable: Cable) -> tuple[float, float]:
     return ei_min, ei_min + stick
 
 
-def read_table(path) -> dict[str, Array]:
-    """A CSV written by the recorders, as columns (empty arrays when it has no rows)."""
-    import csv
-
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    head, body = rows[0], rows[1:]
-    return {
-        name: np.array([float(r[i]) if r[i] not in ("", "nan") else np.nan for r in body])
-        for i, name in enumerate(head)
-        if name != "stage"
-    }
-
-
 @dataclass(frozen=True)
 class SlidingCheck:
     """How far the small-sliding assumption holds at a state, per interface i|i+1 (crossings):

@@ -62,7 +62,7 @@ def test_the_moment_is_uniform_and_equals_the_end_couples():
     Section cuts take each cut element's midpoint forces (one-point elements), so they carry an
     error of the wires' shear force × (distance to the midpoint ≤ h/2): measured 0.35 % here."""
     for zb, problem in bent(nineteen_wire(), ContactSettings(), [0.01, 0.1]):
-        slipping = problem.pair_results()["slipping"].mean()
+        slipping = problem.pair_results().slipping.mean()
         M = zb.moment_zone_middle
         print(zb)
         assert M > 0 and zb.curvature > 0

@@ -9,17 +9,26 @@ zone's M–κ loop with the section moments' uniformity. Units: m, N, N m, 1/m.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import partial
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 
 from ..cable import Cable
 from ..case import Case, CaseError
+from ..recorders import SlipFractions, StepBending
+from ..setups.bending import ZoneBending
 from . import SetupKind
 
-__all__ = ["UniformBending", "BendingLoad", "BendingSteps", "uniform_bending_report"]
+__all__ = [
+    "UniformBending",
+    "BendingLoad",
+    "BendingSteps",
+    "BendingReport",
+    "uniform_bending_report",
+]
 
 
 @dataclass(frozen=True)
@@ -63,96 +72,138 @@ class UniformBending(SetupKind):
 
         return partial(UniformBendingTest, zone=self.load(case).zone, direction=case.load.direction)
 
-    def reference(self, case: Case, result) -> dict:
+    def reference(self, case: Case, result) -> BendingReport | None:
         """What the run measured beside the stick–slip law (``uniform_bending_report``)."""
-        return uniform_bending_report(case.cable, case.load.tension, result.folder)
+        return uniform_bending_report(case.cable, case.load.tension, result.bending, result.slip)
 
     def summary_lines(self, case: Case, result) -> list[str]:
         return bending_lines(self.load(case).zone, result.reference)
 
     def figures(self, case: Case, result, note: str = "") -> list[Path]:
-        return [bending_figure(case, result.folder, note)]
+        return [bending_figure(case, result, note)]
 
 
-def uniform_bending_report(cable: Cable, tension: float, folder) -> dict:
-    """What the uniform bending test measured, beside the stick–slip law (``analytical``): first
-    loading leg M(κ) at the report curvatures, the initial slope against EI_max and EI_min, the
-    spread of the section moments and of the end reactions, the loop area against Masing's, and
-    the slip onset per layer (first curvature at which 10 % of the pairs on the layer's inner
-    interface slip in the zone) against κ_b."""
+@dataclass(frozen=True)
+class BendingReport:
+    """What the uniform bending test measured beside the stick–slip law.
+
+    Attributes:
+        ei_min, ei_max: the bending stiffness bounds, N m².
+        initial_slope: M/κ at the first cycle step, N m².
+        uniformity: the largest spread of the zone's five section moments over a step, as a
+            share of the largest abs(M).
+        reaction_error: the largest difference of an end reaction from the mid-zone moment, as
+            a share of the largest abs(M).
+        table: the first loading leg at the report curvatures: (κ 1/m, M N m, the law's M with
+            the cumulative rule, with the own-tension rule).
+        slip_onset: per layer 1, 2, …: the first curvature (1/m) of the first leg at which 10 %
+            of the pairs on the layer's inner interface in the zone slip (NaN: none).
+        slip_onset_law: the law's κ_b per layer, by friction rule.
+        loop_area: a whole cycle's M–κ loop area, J/m (None without one).
+        masing_area: Masing's loop area on the same curvature path, J/m, by friction rule.
+    """
+
+    ei_min: float
+    ei_max: float
+    initial_slope: float
+    uniformity: float
+    reaction_error: float
+    table: list[tuple[float, float, float, float]]
+    slip_onset: list[float]
+    slip_onset_law: dict[str, npt.NDArray[np.float64]]
+    loop_area: float | None = None
+    masing_area: dict[str, float] | None = None
+
+
+#: the curvatures (1/m) the report's table gives the first loading leg at
+REPORT_CURVATURES = (0.001, 0.005, 0.01, 0.05, 0.1, 0.25, 0.5)
+
+
+def uniform_bending_report(
+    cable: Cable, tension: float, bending: list[StepBending], slip: list[SlipFractions]
+) -> BendingReport | None:
+    """What the uniform bending test measured (its ``ZoneBending`` records at the cycle steps,
+    and the slipping shares of every step), beside the stick–slip law (``analytical``); None
+    before the first cycle step."""
     from ..analytical import StickSlipLaw, loop_area, masing
-    from ..post import read_table
 
-    mk = read_table(f"{folder}/moment_curvature.csv")
-    slip = read_table(f"{folder}/slip.csv")
-    if len(mk["step"]) == 0:
-        return {}
-    kn, k = mk["curvature_nominal_1_per_m"], mk["curvature_1_per_m"]
-    sections = np.column_stack([mk[c] for c in mk if c.startswith("moment_zone")])
-    M = mk["moment_zone_middle_Nm"]
-    reactions = np.column_stack([mk["moment_end_reaction_0_Nm"], mk["moment_end_reaction_L_Nm"]])
+    if not bending:
+        return None
+    zb = [row.measures for row in bending]
+    kn = np.array([r.curvature_nominal for r in zb])
+    k = np.array([r.curvature for r in zb])
+    M = np.array([r.moment_zone_middle for r in zb])
+    sections = np.array([r.section_moments for r in zb])
+    reactions = np.array([[r.moment_end_reaction_0, r.moment_end_reaction_L] for r in zb])
     peak = int(np.argmax(np.abs(kn) >= np.abs(kn).max() - 1e-12))
     leg = slice(0, peak + 1)
     laws = {rule: StickSlipLaw(cable, tension, rule) for rule in ("cumulative", "own_tension")}
-    report = {
-        "ei_min": laws["cumulative"].ei_min,
-        "ei_max": laws["cumulative"].ei_max,
-        "initial_slope": float(M[0] / k[0]),
-        "uniformity": float(np.max(np.ptp(sections, axis=1)) / np.abs(M).max()),
-        "reaction_error": float(np.abs(reactions - M[:, None]).max() / np.abs(M).max()),
-        "table": [],
-    }
     order = np.argsort(k[leg])
-    for kappa in (0.001, 0.005, 0.01, 0.05, 0.1, 0.25, 0.5):
-        if k[0] <= kappa <= np.abs(k[leg]).max() * (1 + 1e-9):
-            report["table"].append(
-                (kappa, float(np.interp(kappa, k[leg][order], M[leg][order])),
-                 float(laws["cumulative"].moment(kappa)), float(laws["own_tension"].moment(kappa)))
-            )  # fmt: skip
+    table = [
+        (kappa, float(np.interp(kappa, k[leg][order], M[leg][order])),
+         float(laws["cumulative"].moment(kappa)), float(laws["own_tension"].moment(kappa)))
+        for kappa in REPORT_CURVATURES
+        if k[0] <= kappa <= np.abs(k[leg]).max() * (1 + 1e-9)
+    ]  # fmt: skip
+    loop = masing_area = None
     # a whole cycle: the loop area against Masing's on the same curvature path
     if len(kn) > peak + 2 and abs(kn[-1]) < 1e-12 and np.min(kn) < -0.9 * np.max(kn):
         path = np.r_[0.0, k]
-        model = np.r_[0.0, M]
-        report["loop_area"] = loop_area(path, model)
-        report["masing_area"] = {
+        loop = loop_area(path, np.r_[0.0, M])
+        masing_area = {
             rule: loop_area(path, masing(law.moment, path)) for rule, law in laws.items()
         }
+    return BendingReport(
+        ei_min=laws["cumulative"].ei_min,
+        ei_max=laws["cumulative"].ei_max,
+        initial_slope=float(M[0] / k[0]),
+        uniformity=float(np.max(np.ptp(sections, axis=1)) / np.abs(M).max()),
+        reaction_error=float(np.abs(reactions - M[:, None]).max() / np.abs(M).max()),
+        table=table,
+        slip_onset=slip_onset(len(cable.layers), bending[: peak + 1], k[leg], slip),
+        slip_onset_law={r: law.slip_onset for r, law in laws.items()},
+        loop_area=loop,
+        masing_area=masing_area,
+    )
+
+
+def slip_onset(
+    n_layers: int, first_leg: list[StepBending], kappa, slip: list[SlipFractions]
+) -> list[float]:
+    """Per layer 1 … n_layers − 1: the first zone curvature ``kappa`` (1/m) along the steps of
+    ``first_leg`` at which 10 % of the pairs on the layer's inner interface slip (NaN: none)."""
+    by_step = {row.step: row for row in slip}
     onset = []
-    by_step = {int(n): j for j, n in enumerate(slip["step"])}
-    first_leg = [(float(k[j]), by_step.get(int(mk["step"][j]))) for j in range(peak + 1)]
-    for i in range(1, len(cable.layers)):
-        col = slip.get(f"slipping_{i - 1}|{i}")
-        hits = [kj for kj, j in first_leg if col is not None and j is not None and col[j] >= 0.1]
+    for i in range(1, n_layers):
+        hits = [float(kj) for kj, row in zip(kappa, first_leg, strict=True)
+                if row.step in by_step and by_step[row.step].slipping[i - 1] >= 0.1]  # fmt: skip
         onset.append(hits[0] if hits else np.nan)
-    report["slip_onset"] = onset
-    report["slip_onset_law"] = {r: law.slip_onset for r, law in laws.items()}
-    return report
+    return onset
 
 
-def bending_lines(zone: float, r: dict) -> list[str]:
+def bending_lines(zone: float, r: BendingReport | None) -> list[str]:
     """The uniform bending test's summary lines (zone ``zone`` m, report ``r``), beside the
     stick–slip law."""
-    if not r:
+    if r is None:
         return []
     lines = [
         f"uniform bending, zone {zone:g} m: section moments uniform within "
-        f"{100 * r['uniformity']:.2f} %, end reactions within {100 * r['reaction_error']:.2f} %",
-        f"first step M/κ = {r['initial_slope']:.0f} N m² = {r['initial_slope'] / r['ei_max']:.2f} "
-        f"EI_max ({r['ei_max']:.0f}) = {r['initial_slope'] / r['ei_min']:.1f} EI_min "
-        f"({r['ei_min']:.1f})",
+        f"{100 * r.uniformity:.2f} %, end reactions within {100 * r.reaction_error:.2f} %",
+        f"first step M/κ = {r.initial_slope:.0f} N m² = {r.initial_slope / r.ei_max:.2f} "
+        f"EI_max ({r.ei_max:.0f}) = {r.initial_slope / r.ei_min:.1f} EI_min ({r.ei_min:.1f})",
         "  κ (1/m)   M model (N m)   stick–slip law: cumulative  own tension",
     ]
-    for kappa, m, cum, own in r["table"]:
+    for kappa, m, cum, own in r.table:
         lines.append(f"  {kappa:7.3f}   {m:13.2f}   {cum:26.2f}  {own:11.2f}")
-    if "loop_area" in r:
-        ma = r["masing_area"]
+    if r.loop_area is not None:
+        ma = r.masing_area
         lines.append(
-            f"loop area {r['loop_area']:.2f} J/m; Masing on the same κ path: "
+            f"loop area {r.loop_area:.2f} J/m; Masing on the same κ path: "
             f"{ma['cumulative']:.2f} (cumulative), {ma['own_tension']:.2f} (own tension)"
         )
-    law = r["slip_onset_law"]
+    law = r.slip_onset_law
     lines.append("slip onset (10 % of the layer's inner pairs in the zone), κ (1/m):")
-    for i, k in enumerate(r["slip_onset"], start=1):
+    for i, k in enumerate(r.slip_onset, start=1):
         lines.append(
             f"  layer {i}: model {k:.4f}   κ_b cumulative {law['cumulative'][i - 1]:.4f}, "
             f"own tension {law['own_tension'][i - 1]:.4f}"
@@ -160,11 +211,12 @@ def bending_lines(zone: float, r: dict) -> list[str]:
     return lines
 
 
-def bending_figure(case: Case, folder, note: str = "") -> Path:
-    """``moment_curvature.png`` of the uniform bending test: the zone's M–κ loop, the section
-    moments and end reactions (uniformity), the EI bounds, and the stick–slip law (virgin curve and
-    Masing loop on the measured curvature path, for both friction rules). ``note``: a line in red
-    at the bottom (an incomplete run)."""
+def bending_figure(case: Case, result, note: str = "") -> Path:
+    """``moment_curvature.png`` of the uniform bending test (``result.bending``: its
+    ``ZoneBending`` records): the zone's M–κ loop, the section moments and end reactions
+    (uniformity), the EI bounds, and the stick–slip law (virgin curve and Masing loop on the
+    measured curvature path, for both friction rules). ``note``: a line in red at the bottom (an
+    incomplete run)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -172,12 +224,11 @@ def bending_figure(case: Case, folder, note: str = "") -> Path:
 
     from ..analytical import StickSlipLaw, masing
     from ..plots import save_figure
-    from ..post import read_table
 
-    folder = Path(folder)
-    mk = read_table(folder / "moment_curvature.csv")
-    k = np.r_[0.0, mk["curvature_1_per_m"]]
-    M = np.r_[0.0, mk["moment_zone_middle_Nm"]]
+    zb = [row.measures for row in result.bending]
+    steps = [row.step for row in result.bending]
+    k = np.r_[0.0, [r.curvature for r in zb]]
+    M = np.r_[0.0, [r.moment_zone_middle for r in zb]]
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [3, 2]})
     ax.plot(k, M, "o-", ms=3, color="k", label="strand (mid-zone section)")
     span = np.abs(k).max() or 1.0
@@ -195,13 +246,13 @@ def bending_figure(case: Case, folder, note: str = "") -> Path:
     ax.set_title(f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN: uniform bending")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    cols = [c for c in mk if c.startswith("moment_")]
-    for c in cols:
-        ax2.plot(mk["step"], mk[c] - mk["moment_zone_middle_Nm"], ".", ms=4,
-                 label=c.removeprefix("moment_").removesuffix("_Nm").replace("_", " "))  # fmt: skip
+    names = [f.name for f in fields(ZoneBending) if f.name.startswith("moment_")]
+    for name in names:
+        ax2.plot(steps, [getattr(r, name) - r.moment_zone_middle for r in zb], ".", ms=4,
+                 label=name.removeprefix("moment_").replace("_", " "))  # fmt: skip
     ax2.set_xlabel("step")
     ax2.set_ylabel("M − M(mid-zone) (N m)")
     ax2.set_title("uniformity: five sections of the zone, end reactions")
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=7)
-    return save_figure(fig, folder / "moment_curvature.png", note)
+    return save_figure(fig, Path(result.folder) / "moment_curvature.png", note)

@@ -163,8 +163,8 @@ def load_deflection_figure(case: Case, result, note: str = "") -> Path:
 
 
 def midspan_bending_figure(case: Case, result, note: str = "") -> Path:
-    """``moment_curvature.png``: the midspan section's moment against the core's curvature, with
-    the EI bounds."""
+    """``moment_curvature.png``: the midspan section's moment against the core's curvature
+    (``result.bending``: ``MidspanBending`` records), with the EI bounds."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -173,17 +173,17 @@ def midspan_bending_figure(case: Case, result, note: str = "") -> Path:
     from ..plots import save_figure
     from ..post import bending_stiffness_bounds
 
-    folder = Path(result.folder)
-    mk = np.loadtxt(folder / "moment_curvature.csv", delimiter=",", skiprows=1, ndmin=2)
+    kappa = np.array([row.measures.curvature for row in result.bending])
+    moment = np.array([row.measures.moment for row in result.bending])
     ei_min, ei_max = bending_stiffness_bounds(case.cable)
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    ax.plot(np.r_[0, mk[:, 2]], np.r_[0, mk[:, 3]], "o-", ms=3, label="model, midspan")
-    k = np.linspace(0, np.abs(mk[:, 2]).max(), 2)
+    ax.plot(np.r_[0, kappa], np.r_[0, moment], "o-", ms=3, label="model, midspan")
+    k = np.linspace(0, np.abs(kappa).max(), 2)
     ax.plot(k, ei_max * k, "--", label=f"EI_max = {ei_max:.0f} N m²")
     ax.plot(k, ei_min * k, ":", label=f"EI_min = {ei_min:.1f} N m²")
-    ax.set_ylim(1.2 * min(mk[:, 3].min(), 0), 1.2 * max(mk[:, 3].max(), 0) + 1e-9)
+    ax.set_ylim(1.2 * min(moment.min(), 0), 1.2 * max(moment.max(), 0) + 1e-9)
     ax.set_xlabel("curvature κ (1/m)")
     ax.set_ylabel("bending moment M (N m)")
     ax.legend()
     ax.grid(alpha=0.3)
-    return save_figure(fig, folder / "moment_curvature.png", note)
+    return save_figure(fig, Path(result.folder) / "moment_curvature.png", note)

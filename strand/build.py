@@ -1,0 +1,127 @@
+"""Building a run from a case: its results folder (with the settings written first), the strand in
+its set-up kind's test set-up with the Newton solver, its load programme, and the state a restart
+continues from. Units: SI."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .case import Case
+from .checkpoint import CheckpointError, restore
+from .folder import RUN_MARKER, prepare_results_folder
+from .geometry import build_geometry
+from .kinds import kind_of
+from .parallel import on_root
+from .problem import StrandProblem
+from .programme import LoadProgramme
+from .recorders import RunStep
+from .run_result import Start
+from .solver import NewtonOptions
+
+__all__ = [
+    "settings_text",
+    "results_folder",
+    "newton_options",
+    "setup_and_programme",
+    "build_problem",
+    "restart_from",
+]
+
+
+def settings_text(case: Case) -> str:
+    """The settings of ``case``, a ``key = value`` line each under its section's name (the
+    run's ``settings.txt``)."""
+    lines = [f"case: {case.source}", f"cable: {case.cable.name}"]
+    for name in ("mesh", "contact", "load", "steps", "output"):
+        lines.append(f"[{name}]")
+        section = getattr(case, name)
+        items = section.items() if name in ("load", "steps") else vars(section).items()
+        for k, v in items:
+            lines.append(f"{k} = {v!r}")
+    return "\n".join(lines) + "\n"
+
+
+def results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
+    """The run's folder, prepared on rank 0 (``folder.prepare_results_folder``) with the run's
+    settings written first; every rank gets the verdict."""
+
+    def prepare() -> Path:
+        path = prepare_results_folder(folder, overwrite)
+        text = settings_text(case)
+        if restart is not None:
+            text += f"restart = {str(restart)!r}\n"
+        (path / RUN_MARKER).write_text(text)
+        return path
+
+    return on_root(prepare)
+
+
+def newton_options(case: Case) -> NewtonOptions:
+    """Newton's settings from ``[steps]``: the residual tolerance, and the balance test against
+    the mean wire tension (forces) and that force on the largest wire diameter (moments)."""
+    s = case.steps
+    force = s.balance * case.load.tension / case.cable.n_wires
+    diameter = max(layer.wire.diameter for layer in case.cable.layers)
+    return NewtonOptions(
+        atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
+        stall_after=NewtonOptions.stall_after if s.stall else 0, linesearch=s.line_search,
+    )  # fmt: skip
+
+
+def setup_and_programme(case: Case):
+    """The test set-up factory (taking the model) and the load programme of ``case``."""
+    kind = kind_of(case)
+    return kind.setup(case), kind.programme(case)
+
+
+def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme]:
+    """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
+    one line about it on ``stream``."""
+    geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
+    options = newton_options(case)
+    setup, programme = setup_and_programme(case)
+    problem = StrandProblem(geometry, case.contact, options, setup=setup)
+    size = problem.model.comm.size
+    print(
+        f"{case.cable.name}: L = {case.mesh.length:g} m, {len(geometry.wire_layer)} wires, "
+        f"{len(geometry.cells)} elements, {6 * len(geometry.points)} unknowns, "
+        f"{len(geometry.pairs)} contact pairs, normal = {case.contact.normal}, friction "
+        f"{'on' if case.contact.friction else 'off'}" + (f"; {size} MPI ranks" if size > 1 else ""),
+        file=stream,
+        flush=True,
+    )
+    if not case.contact.friction and case.contact.normal == "frozen":
+        print(
+            "frictionless: contact normals frozen at t = 0 (geometry-following normals do not "
+            "converge without friction); gaps are approximate in bending (up to ~50 µm on "
+            "Cardinal at 4.3 kN), so pair forces are indicative only",
+            file=stream,
+            flush=True,
+        )
+    return problem, programme
+
+
+def restart_from(problem: StrandProblem, programme: LoadProgramme, checkpoint, path) -> Start:
+    """Put ``checkpoint`` into ``problem`` and say where the programme continues from; a
+    checkpoint of another strand or programme is refused in one line (``CheckpointError``)."""
+    g = problem.geometry
+    if checkpoint.w.shape != (len(g.points), 6) or any(
+        len(v) != len(g.pairs) for v in checkpoint.pairs.values()
+    ):
+        raise CheckpointError(
+            f"{path}: written for another strand ({len(checkpoint.w)} points, "
+            f"{len(next(iter(checkpoint.pairs.values()), []))} contact pairs; this case has "
+            f"{len(g.points)} and {len(g.pairs)}): give the case it was written with"
+        )
+    if not 0 <= checkpoint.stage < len(programme.stages):
+        raise CheckpointError(
+            f"{path}: its stage {checkpoint.stage} is not in this case's load programme "
+            f"({len(programme.stages)} stages)"
+        )
+    position = restore(problem, checkpoint)
+    stage = programme.stages[checkpoint.stage]
+    state = problem.setup.state()
+    step = RunStep(checkpoint.number, stage.name, stage.parameter,
+                   problem.setup.get(stage.parameter), checkpoint.time, 0, 0, 0.0, 0.0,
+                   state)  # fmt: skip
+    return Start(position, step)

@@ -1,0 +1,90 @@
+"""The closing summary of a run (``summary.txt``): its effort, the tensioned state against the
+fibre model, the set-up kind's own lines (``SetupKind.summary_lines``), the bending stiffness
+bounds, and any warning or failure. Units: N, N/m, µε, s."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .case import Case
+from .geometry import LINE
+from .kinds import kind_of
+from .pair_results import PairResults
+from .post import bending_stiffness_bounds, fibre_model
+from .run_result import RunResult
+
+__all__ = ["summarize", "effort_line", "tension_lines", "contact_force_line"]
+
+
+def summarize(case: Case, result: RunResult, problem) -> str:
+    """The closing summary: effort, key results, and the tension stage against the fibre model."""
+    lines = [effort_line(result)]
+    lines += tension_lines(case, result, problem.model.geometry)
+    lines += kind_of(case).summary_lines(case, result)
+    ei_min, ei_max = bending_stiffness_bounds(case.cable)
+    lines.append(f"bending stiffness bounds: EI_min {ei_min:.1f} N m², EI_max {ei_max:.0f} N m²")
+    for w in result.warnings:
+        lines.append(f"warning: {w}")
+    if result.failure:
+        lines.append(f"{'stopped' if result.interrupted else 'failure'}: {result.failure}")
+    return "\n".join(lines) + "\n"
+
+
+def effort_line(result: RunResult) -> str:
+    """The outcome, steps, Newton iterations (converged and failed), wall times and folder."""
+    its = result.iterations
+    failed = sum(s.failed_iterations for s in result.steps)
+    cuts = sum(s.cuts for s in result.steps)
+    outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
+    return (
+        f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in {cuts} "
+        f"failed attempts), {result.seconds:.0f} s ({result.seconds / max(its + failed, 1):.2f} s "
+        f"per iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}"
+    )
+
+
+def tension_lines(case: Case, result: RunResult, geometry) -> list[str]:
+    """The last converged tension (the target, or where a failed run stopped) against the fibre
+    model: strain and wire forces per layer over the middle half, and the contact forces."""
+    t = result.tensioned
+    tension_rows = [s for s in result.steps if s.parameter == "tension"]
+    if t is None or not tension_rows:
+        return []
+    tension = tension_rows[-1].load
+    ref = fibre_model(case.cable, tension)
+    L = case.mesh.length
+    strain = tension_rows[-1].state.end_displacement / L
+    lines = [
+        f"after tension ({tension / 1e3:g} kN)   model    fibre model  diff",
+        f"  strain (µε)              {1e6 * strain:8.0f}  {1e6 * ref['strain']:8.0f}  "
+        f"{100 * (strain / ref['strain'] - 1):+6.1f} %",
+    ]
+    middle = np.abs(t.z - L / 2) < L / 4
+    for i, f_ref in enumerate(ref["wire_force"]):
+        f = t.axial[middle & (t.layer == i)].mean()
+        name = "core" if i == 0 else f"layer {i}"
+        lines.append(
+            f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
+        )
+    lines.append(contact_force_line(geometry, result.tensioned_pairs))
+    return lines
+
+
+def contact_force_line(geometry, pairs: PairResults) -> str:
+    """Mean contact forces per interface over the middle half of the strand: line pairs per metre
+    of layer-1 wire (N/m), crossings per crossing (N)."""
+    p = geometry.pairs
+    z = geometry.points[p.a, 2]
+    middle = np.abs(z - geometry.length / 2) < geometry.length / 4
+    parts = []
+    for i in range(len(geometry.cable.layers) - 1):
+        sel = middle & (p.interface == i)
+        if not np.any(sel):
+            continue
+        line = p.kind[sel] == LINE
+        if np.all(line):
+            q = pairs.force[sel].sum() / p.tributary[sel].sum()
+            parts.append(f"{i}|{i + 1} {q:.0f} N/m")
+        else:
+            parts.append(f"{i}|{i + 1} {pairs.force[sel].mean():.1f} N")
+    return "  mean contact force, middle half: " + ", ".join(parts)

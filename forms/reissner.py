@@ -129,13 +129,15 @@ class CircularSection:
         """This section with each number among its arguments held by a cell-wise (DG0) function
         of ``mesh``; ``Constant`` and ``Function`` arguments are kept. Its forms are those of a
         strand's layer sections (cell-wise d, E, ν), so one compiled kernel serves both."""
+        if not any(isinstance(a, numbers.Real) for a in self._arguments):
+            return self  # every argument is already data of the forms (or None)
         from dolfinx import fem  # here, not at the top: the forms import without dolfinx
 
         space = fem.functionspace(mesh, ("DG", 0))
 
         def cell_wise(value, name):
             if not isinstance(value, numbers.Real):
-                return value  # None, or already data of the form
+                return value
             f = fem.Function(space, name=name)
             f.x.array[:] = value
             return f

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .case import Case
+from .kinds import kind_of
 from .post import CellResults, sector_of
 
 __all__ = ["compare_case", "force_differences", "difference_table", "overlay_figure"]
@@ -119,9 +120,11 @@ def compare_case(
             raise KeyboardInterrupt
     small, large = results["small"], results["large"]
     n_layers = len(case.cable.layers)
+    kind = kind_of(case)
+    targets = [c * kind.amplitude(case) for c in case.load.cycle]
     lines = [
         f"{case.cable.name}, L = {case.mesh.length:g} m, tension {case.load.tension / 1e3:g} kN, "
-        f"lateral cycle {[c * case.load.lateral for c in case.load.cycle]} N",
+        f"{kind.parameter} cycle {targets} {kind.unit}",
         "model  steps  cuts  Newton its  time s  s/it  contact s  δ at peak mm  δ back at P = 0 mm",
     ]
     for model, r in results.items():

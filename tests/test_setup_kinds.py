@@ -185,6 +185,11 @@ class ClashLoad:
     lateral: float = 1.0  # N: the saddle test's setting
 
 
+@dataclass(frozen=True)
+class ClashSteps:
+    tension: float = 1.0  # N: a setting every kind shares
+
+
 def test_a_kind_may_not_take_another_kinds_settings():
     class Clash(Pull):
         name = "clash"
@@ -192,6 +197,9 @@ def test_a_kind_may_not_take_another_kinds_settings():
         step_settings = NoSettings
 
     with pytest.raises(ValueError, match=r"settings \['lateral'\] belong to saddle"):
+        kinds.register(Clash())
+    Clash.load_settings, Clash.step_settings = NoSettings, ClashSteps
+    with pytest.raises(ValueError, match=r"settings \['tension'\] belong to every kind"):
         kinds.register(Clash())
     assert "clash" not in [k.name for k in kinds.registered()]
 

@@ -5,11 +5,11 @@ A kind (``SetupKind``) is one module: its own ``[load]`` and ``[steps]`` setting
 dataclasses; the case file lists them flat beside the common ones), its checks of a case, the
 test set-up it builds (a ``strand.setups`` class, the library's mechanics), its load programme,
 the measure a sweep reports, its analytical reference, its summary lines and figures. The
-registry maps ``[load] kind`` names to kinds: ``register`` adds one (the built-in ones at the
-end of this module), ``lookup`` finds one by name
-(a ``CaseError`` naming the known kinds otherwise) and ``kind_of`` gives a case's. The built-in
-kinds: ``saddle`` (the seed paper's midspan saddle test) and ``bending`` (uniform bending by end
-rotations).
+registry maps ``[load] kind`` names to kinds: ``register`` adds one (the built-in ones at the end
+of this module), ``lookup`` finds one by name (a ``CaseError`` naming the known kinds otherwise)
+and ``kind_of`` gives a case's. The built-in kinds: ``saddle`` (the seed paper's midspan saddle
+test, ``strand.kinds.saddle``) and ``bending`` (uniform bending by end rotations,
+``strand.kinds.bending``); tests/test_setup_kinds.py registers one of its own.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from typing import Any
 
 from ..case import Case, CaseError
 from ..programme import LoadProgramme, Stage, cycle_stages
+from ..settings import LoadSettings, StepSettings
 
 __all__ = [
     "SetupKind",
@@ -139,16 +140,19 @@ _KINDS: dict[str, SetupKind] = {}
 
 
 def register(kind: SetupKind) -> SetupKind:
-    """Add ``kind`` to the registry (a ``ValueError`` if its name or one of its own settings is
-    taken by another kind)."""
+    """Add ``kind`` to the registry (a ``ValueError`` if its name, or the name of one of its own
+    settings, is taken: by another kind, or by a setting every kind shares)."""
     if kind.name in _KINDS:
         raise ValueError(f"a set-up kind named {kind.name!r} is registered already")
-    for other in _KINDS.values():
-        for section in ("load_settings", "step_settings"):
-            mine = {f.name for f in fields(getattr(kind, section))}
-            taken = mine & {f.name for f in fields(getattr(other, section))}
-            if taken:
-                raise ValueError(f"{kind.name}: settings {sorted(taken)} belong to {other.name}")
+    for section, common in (("load_settings", LoadSettings), ("step_settings", StepSettings)):
+        mine = {f.name for f in fields(getattr(kind, section))}
+        owners = {f.name: "every kind" for f in fields(common) if f.name != "by_kind"}
+        for other in _KINDS.values():
+            owners.update(dict.fromkeys((f.name for f in fields(getattr(other, section))),
+                                        other.name))  # fmt: skip
+        taken = sorted(mine & set(owners))
+        if taken:
+            raise ValueError(f"{kind.name}: settings {taken} belong to {owners[taken[0]]}")
     _KINDS[kind.name] = kind
     return kind
 

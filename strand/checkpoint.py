@@ -52,7 +52,8 @@ class Checkpoint:
     ``loads`` by parameter, the position in the programme (the ``stage`` under way, the ramp's
     next increment ``step`` and last ``load_increment``, None at none), the nodal unknowns ``w``
     (N, 6) and the ramp's last increment of them ``dw`` (N, 6, or None) in the geometry's point
-    order, and the contact history ``pairs`` (per name, arrays over the geometry's pairs)."""
+    order, and the contact history ``pairs`` (per name, arrays over the geometry's pairs) and
+    ``same_layer`` (likewise over the same-layer pairs, ``strand.same_layer``; empty without)."""
 
     number: int
     time: float
@@ -63,6 +64,7 @@ class Checkpoint:
     w: Array
     dw: Array | None
     pairs: dict[str, np.ndarray] = field(default_factory=dict)
+    same_layer: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 def _block_points(model) -> npt.NDArray[np.int64]:
@@ -85,6 +87,7 @@ def capture(problem, number: int, time: float, position: Position) -> Checkpoint
         None if ramp is None else ramp.step,
         None if ramp is None or ramp.previous is None else ramp.previous[0],
         model.node_values(), dw, model.gather_pairs([g.history_arrays() for g in model.contact]),
+        model.same_layer_history(),
     )  # fmt: skip
 
 
@@ -99,6 +102,14 @@ def restore(problem, checkpoint: Checkpoint) -> Position:
         setup.set(name, value)
     for g in model.contact:
         g.restore_history({k: v[g.index] for k, v in checkpoint.pairs.items()}, model.nodal)
+    same_layer = model.contact_settings.same_layer != "off"
+    if same_layer != bool(checkpoint.same_layer):
+        raise CheckpointError(
+            "the checkpoint was written with a different [contact] same_layer setting "
+            f"(this case: {model.contact_settings.same_layer!r}); give the one it was written with"
+        )
+    for g in model.same_layer:
+        g.restore_history({k: v[g.index] for k, v in checkpoint.same_layer.items()}, model.nodal)
     problem.solver.commit()  # the state rollback returns to (the groups' history is set)
     c = checkpoint
     if c.step is None:
@@ -128,9 +139,10 @@ def write_checkpoint(path: str | Path, checkpoint: Checkpoint, comm=MPI.COMM_WOR
         f.create_dataset("w", data=c.w)
         if c.dw is not None:
             f.create_dataset("dw", data=c.dw)
-        pairs = f.create_group("pairs")
-        for k, v in c.pairs.items():
-            pairs.create_dataset(k, data=v)
+        for name, arrays in (("pairs", c.pairs), ("same_layer", c.same_layer)):
+            group = f.create_group(name)
+            for k, v in arrays.items():
+                group.create_dataset(k, data=v)
     tmp.replace(path)
 
 
@@ -157,4 +169,5 @@ def read_checkpoint(path: str | Path) -> Checkpoint:
             {k: float(v) for k, v in f["loads"].attrs.items()}, int(f.attrs["stage"]),
             optional("step"), optional("load_increment"), f["w"][()],
             f["dw"][()] if "dw" in f else None, {k: v[()] for k, v in f["pairs"].items()},
+            {k: v[()] for k, v in f["same_layer"].items()} if "same_layer" in f else {},
         )  # fmt: skip

@@ -11,6 +11,7 @@ from dataclasses import dataclass, fields
 from .cable import CableError
 from .contact.element import resolve_normal
 from .contact.errors import ContactError
+from .same_layer import SAME_LAYER
 
 __all__ = ["ContactSettings", "COMPLIANCES"]
 
@@ -46,6 +47,9 @@ class ContactSettings:
             baseline).
         reach: large sliding only: sliding distance reserved either side of each initial pair,
             m (its window holds every segment of the two wires within reach).
+        same_layer: contact between neighbouring wires of one layer (``strand.same_layer``):
+            "off", "nominal" (each layer's gaps from its helices, clipped at touching) or
+            "packed" (neighbours touching, the spare circumference in one gap); small sliding.
     """
 
     normal: str = "auto"
@@ -56,6 +60,7 @@ class ContactSettings:
     friction: bool = True
     model: str = "small"
     reach: float = 1e-3
+    same_layer: str = "off"
 
     def __post_init__(self):
         try:
@@ -69,6 +74,15 @@ class ContactSettings:
             )
         if self.model not in ("small", "large"):
             raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
+        if self.same_layer not in SAME_LAYER:
+            raise CableError(
+                f"contact same_layer {self.same_layer!r} is unknown; choose {', '.join(SAME_LAYER)}"
+            )
+        if self.same_layer != "off" and self.model != "small":
+            raise CableError(
+                f'contact same_layer = "{self.same_layer}" needs model = "small" (same-layer '
+                "pairs are not built for large sliding yet)"
+            )
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):

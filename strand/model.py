@@ -22,6 +22,7 @@ from .mesh import CableMesh, beam_space, cable_mesh, input_to_block
 from .output import cell_function
 from .pair_results import PairResults
 from .partition import DistributionError, owned_rows
+from .same_layer import same_layer_groups, same_layer_pairs
 from .strand_contact import contact_groups, pair_stencils, sliding_groups, sliding_windows
 
 __all__ = ["StrandModel", "layer_section", "strand_stencils"]
@@ -54,6 +55,8 @@ def strand_stencils(
         out = [nodes for _, nodes, _, _ in sliding_windows(geometry, settings.reach)]
     else:
         out = [pair_stencils(geometry)]
+    if settings.same_layer != "off":
+        out.append(same_layer_pairs(geometry, settings.same_layer).stencils)
     offsets = geometry.wire_offsets
     return out + [offsets[:-1][None, :], (offsets[1:] - 1)[None, :]]
 
@@ -89,6 +92,8 @@ class StrandModel:
             self.contact = sliding_groups(geometry, self.i2b, cs, owned)
         else:
             self.contact = contact_groups(geometry, self.i2b, cs, owned)
+        #: contact between neighbouring wires of a layer (``[contact] same_layer``)
+        self.same_layer = same_layer_groups(geometry, self.i2b, cs, owned)
         n_pairs = comm.allreduce(sum(len(g.index) for g in self.contact), op=MPI.SUM)
         if n_pairs != len(geometry.pairs):
             raise DistributionError(
@@ -151,25 +156,40 @@ class StrandModel:
         return np.arange(offsets[0], offsets[1])
 
     def gather_pairs(
-        self, per_group: list[dict[str, np.ndarray]], shapes: dict[str, tuple] | None = None
+        self,
+        per_group: list[dict[str, np.ndarray]],
+        shapes: dict[str, tuple] | None = None,
+        groups: list | None = None,
+        n_pairs: int | None = None,
     ) -> dict[str, Array]:
-        """Per-pair arrays of the contact groups (a dict per group in ``contact``, first axis
-        its pairs) in the geometry's pair order, on every rank. ``shapes``: each array's shape
-        beyond the pair axis (default: from the groups of every rank; a rank may hold none)."""
+        """Per-pair arrays of contact groups (a dict per group of ``groups``, default
+        ``contact``, first axis its pairs) in their pairs' global order (``n_pairs`` of them,
+        default the geometry's), on every rank. ``shapes``: each array's shape beyond the pair
+        axis (default: from the groups of every rank; a rank may hold none)."""
+        groups = self.contact if groups is None else groups
         if shapes is None:
             shapes = {k: v.shape[1:] for arrays in per_group for k, v in arrays.items()}
             if self.comm.size > 1:
                 for other in self.comm.allgather(shapes):
                     shapes.update(other)
-        n = len(self.geometry.pairs)
+        n = len(self.geometry.pairs) if n_pairs is None else n_pairs
         out = {k: np.zeros((n, *shapes[k])) for k in sorted(shapes)}  # one order on every rank
-        for g, arrays in zip(self.contact, per_group, strict=True):
+        for g, arrays in zip(groups, per_group, strict=True):
             for k, v in arrays.items():
                 out[k][g.index] = v
         if self.comm.size > 1:  # each pair lives on one rank: the sums are exact
             for value in out.values():
                 self.comm.Allreduce(MPI.IN_PLACE, value, op=MPI.SUM)
         return out
+
+    def same_layer_history(self) -> dict[str, Array]:
+        """The same-layer pairs' history arrays in ``same_layer_pairs`` order, every rank
+        (empty without same-layer contact)."""
+        if self.contact_settings.same_layer == "off":
+            return {}
+        n = len(same_layer_pairs(self.geometry, self.contact_settings.same_layer))
+        arrays = [g.history_arrays() for g in self.same_layer]
+        return self.gather_pairs(arrays, groups=self.same_layer, n_pairs=n)
 
     def pair_results(self) -> PairResults:
         """Every geometry pair's gap, forces, slip state and friction history at the current

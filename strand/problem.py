@@ -64,7 +64,7 @@ class StrandProblem:
             self.model.beam.residual(),
             self.model.w,
             self.setup.bcs,
-            terms=[*self.model.contact, *self.setup.terms],
+            terms=[*self.model.contact, *self.model.same_layer, *self.setup.terms],
             options=options,
             monitor=monitor,
         )

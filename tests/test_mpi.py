@@ -113,6 +113,15 @@ def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seve
 
 @needs_mpirun
 @pytest.mark.slow
+def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
+    """The 1+6's equal wires touch their neighbours: every same-layer pair is closed and pressed,
+    and its three-node stencils are kept whole on the rank that evaluates them."""
+    same = ["--set", 'contact.same_layer="nominal"']
+    _run_and_compare(seven_wire, ["seven.toml", *same], ranks=(2,), tag="same_layer")
+
+
+@needs_mpirun
+@pytest.mark.slow
 def test_a_cardinal_piece_with_friction_is_the_same_on_1_2_and_3_ranks(tmp_path):
     case = ["--set", "mesh.length=0.1", "--set", "load.lateral=1000.0", "--set",
             "steps.lateral=250.0", "--set", "steps.lateral_max=250.0"]  # fmt: skip

@@ -67,10 +67,10 @@ def seven(tmp_path):
 
 @pytest.mark.parametrize(
     "settings, k",
-    [([], 6), (['contact.model="large"'], 8),
+    [([], 6), (['contact.model="large"'], 8), (['contact.same_layer="nominal"'], 6),
      (['load.kind="bending"', "load.zone=0.04", "load.curvature=0.5", "steps.curvature=0.1",
        "steps.curvature_max=0.2"], 11)],
-    ids=["small sliding, after a step cut", "large sliding", "uniform bending"],
+    ids=["small sliding, after a step cut", "large sliding", "same-layer contact", "uniform bending"],
 )  # fmt: skip
 def test_a_run_continued_from_any_step_is_the_uninterrupted_run(seven, tmp_path, settings, k):
     case = load_case(seven, [*QUIET, *settings])

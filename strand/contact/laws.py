@@ -37,6 +37,7 @@ __all__ = [
     "PenaltyLaw",
     "HertzPointLaw",
     "HertzLineLaw",
+    "SmoothOnset",
     "FrictionLaw",
     "ElasticSlip",
     "Mindlin",
@@ -186,6 +187,44 @@ class HertzLineLaw(_ApproachLaw):
             if np.max(np.abs(step)) < 1e-14:
                 break
         return np.exp(x)
+
+
+@dataclass(frozen=True)
+class SmoothOnset(NormalLaw):
+    """``law`` made C¹ at first touch, for pairs that start touching without load.
+
+    A law whose tangent jumps from 0 (open) to k₀ = dp/dg at g = 0⁻ makes Newton chatter where
+    many pairs sit within nanometres of touching (the wires of a packed layer). Over the first
+    ``width`` ε of approach δ = −g the force rises as p = k₀δ²/(2ε); beyond, the law is shifted,
+    p = p_law(δ − ε) + k₀ε/2, matching value and slope at δ = ε. With ε = 10 nm the force moves
+    by k₀ε/2 at most (under 0.1 N for the wires of a strand), far below every physical scale.
+    """
+
+    law: NormalLaw
+    width: float = 1e-8  # m
+
+    def _k0(self, like: Array) -> Array:
+        """k₀ per pair: the law's tangent just closed."""
+        return -self.law.force(np.zeros_like(like, dtype=float))[1]
+
+    def force(self, g: Array) -> tuple[Array, Array]:
+        d = -np.asarray(g, float)
+        eps, k0 = self.width, self._k0(d)
+        p_law, dp_law = self.law.force(np.minimum(-(d - eps), 0.0))
+        ramp = d < eps
+        p = np.where(ramp, k0 * np.maximum(d, 0.0) ** 2 / (2 * eps), p_law + k0 * eps / 2)
+        dp = np.where(ramp, -k0 * np.maximum(d, 0.0) / eps, dp_law)
+        return p, dp
+
+    def stiffness(self, p: Array) -> Array:
+        p = np.maximum(np.asarray(p, float), 0.0)
+        eps, k0 = self.width, self._k0(p)
+        ramp = p < k0 * eps / 2
+        return np.where(
+            ramp,
+            np.sqrt(2 * k0 * p / eps),
+            self.law.stiffness(np.maximum(p - k0 * eps / 2, 0.0)),
+        )
 
 
 # -- friction laws ----------------------------------------------------------------------------------

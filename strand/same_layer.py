@@ -1,0 +1,192 @@
+"""Contact between neighbouring wires of one layer: where they face each other, and their gaps.
+
+The wires of a helical layer are identical helices turned by 2π/n. Their centre lines come closest
+at a distance D found exactly (``helix_clearance``): D² = min_s 2r²(1 − cos(s + 2π/n)) + (s/ω)²,
+ω = tan α / r the helix's angular rate. D − d is the layer's nominal gap. Cardinal's (from its
+helices): layer 1 −14.1 µm (its six equal steel wires would overlap: they touch one another),
+layers 2–4 +62.0, +78.2, +65.6 µm (``tests/test_same_layer.py`` asserts them).
+
+Each node of wire j (in order of phase) faces the point of wire j+1's polyline nearest to it; the
+pair is a ``contact.segment.SegmentGroup`` pair [a, b₀, b₁] with that point's weight ξ, the
+normal from a to it, the Hertz line law over the node's tributary length of wire (with a C¹
+onset, ``contact.laws.SmoothOnset``: these pairs start touching without load), and Mindlin's
+friction with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
+
+* ``"nominal"``: every neighbour at the layer's nominal gap, clipped at 0 (a layer whose helices
+  would overlap is taken as touching: stranding puts its wires side by side);
+* ``"packed"``: every neighbour touching, and the layer's spare circumference, n times its
+  nominal gap, gathered in the one gap between its last and first wires, as stranding leaves
+  wires bunched.
+
+Units: m, N.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from .cable import Layer
+from .contact.hertz import compliance, mindlin_ratio
+from .contact.laws import ElasticSlip, HertzLineLaw, Mindlin, PenaltyLaw, SmoothOnset
+from .contact.segment import SegmentGroup
+from .geometry import StrandGeometry
+from .partition import owned_rows
+
+__all__ = [
+    "SAME_LAYER",
+    "SameLayerPairs",
+    "helix_clearance",
+    "same_layer_pairs",
+    "same_layer_groups",
+]
+
+Array = npt.NDArray[np.float64]
+Int = npt.NDArray[np.int64]
+
+#: choices of ``[contact] same_layer``
+SAME_LAYER = ("off", "nominal", "packed")
+
+
+def helix_clearance(layer: Layer) -> float:
+    """The smallest distance between the centre lines of two neighbouring wires of ``layer``, m
+    (golden-section search over the phase lag s ∈ [−2π/n, 0], to round-off)."""
+    r, n = layer.radius, layer.wires
+    omega = np.tan(layer.alpha) / r
+    step = 2 * np.pi / n
+
+    def square(s):
+        return 2 * r * r * (1 - np.cos(s + step)) + (s / omega) ** 2
+
+    lo, hi = -step, 0.0
+    golden = (np.sqrt(5) - 1) / 2
+    for _ in range(200):
+        a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        if square(a) < square(b):
+            hi = b
+        else:
+            lo = a
+    return float(np.sqrt(square(0.5 * (lo + hi))))
+
+
+@dataclass(frozen=True)
+class SameLayerPairs:
+    """Node-to-segment pairs between neighbouring wires of the helical layers (input points).
+
+    Attributes:
+        a, b0, b1: (P,) node a and the segment (b₀, b₁) of the next wire that faces it.
+        weight: (P,) ξ of the facing point on the segment.
+        normal: (P, 3) unit normals a → facing point at t = 0.
+        gap: (P,) initial gaps, m.
+        tributary: (P,) length of wire a each pair stands for, m.
+        layer: (P,) the layer.
+    """
+
+    a: Int
+    b0: Int
+    b1: Int
+    weight: Array
+    normal: Array
+    gap: Array
+    tributary: Array
+    layer: npt.NDArray[np.int32]
+
+    def __len__(self) -> int:
+        return len(self.a)
+
+    @property
+    def stencils(self) -> Int:
+        """(P, 3) input nodes [a, b₀, b₁], anchor first."""
+        return np.column_stack([self.a, self.b0, self.b1])
+
+
+def _wire_pairs(geometry: StrandGeometry, w: int, w_next: int):
+    """Each node of wire ``w`` against the nearest point of wire ``w_next``'s polyline: nodes a,
+    segments (b₀, b₁), ξ, the vectors a → facing point and the tributary lengths; nodes whose
+    nearest point is an end of the neighbour are left out."""
+    g = geometry
+    pa = np.arange(g.wire_offsets[w], g.wire_offsets[w + 1])
+    pb = np.arange(g.wire_offsets[w_next], g.wire_offsets[w_next + 1])
+    X, s0 = g.points[pa], g.points[pb[:-1]]
+    d = g.points[pb[1:]] - s0
+    xi = np.einsum("psi,si->ps", X[:, None, :] - s0[None], d) / np.einsum("si,si->s", d, d)
+    xi = np.clip(xi, 0.0, 1.0)
+    distance = np.linalg.norm(s0[None] + xi[..., None] * d[None] - X[:, None], axis=2)
+    j = np.argmin(distance, axis=1)
+    rows = np.arange(len(pa))
+    t = xi[rows, j]
+    inside = ((t > 0) | (j > 0)) & ((t < 1) | (j < len(d) - 1))  # faces the neighbour's span
+    lengths = np.linalg.norm(np.diff(g.points[pa], axis=0), axis=1)
+    tributary = 0.5 * (np.r_[0.0, lengths] + np.r_[lengths, 0.0])
+    facing = s0[j] + t[:, None] * d[j] - X
+    keep = inside
+    return pa[keep], pb[j][keep], pb[j + 1][keep], t[keep], facing[keep], tributary[keep]
+
+
+def same_layer_pairs(geometry: StrandGeometry, gaps: str = "nominal") -> SameLayerPairs:
+    """The pairs between neighbouring wires of every helical layer, with ``gaps`` "nominal" or
+    "packed" (module docstring)."""
+    if gaps not in SAME_LAYER[1:]:
+        raise ValueError(f"same-layer gaps {gaps!r}: choose nominal or packed")
+    g = geometry
+    parts = []
+    for i, layer in enumerate(g.cable.layers[1:], start=1):
+        wires = np.flatnonzero(g.wire_layer == i)
+        if len(wires) < 2:
+            continue
+        nominal = max(helix_clearance(layer) - layer.wire.diameter, 0.0)
+        spare = len(wires) * (helix_clearance(layer) - layer.wire.diameter)
+        for k, w in enumerate(wires):
+            a, b0, b1, xi, facing, tributary = _wire_pairs(g, w, wires[(k + 1) % len(wires)])
+            if gaps == "nominal":
+                gap = np.full(len(a), nominal)
+            else:
+                gap = np.full(len(a), max(spare, 0.0) if k == len(wires) - 1 else 0.0)
+            normal = facing / np.linalg.norm(facing, axis=1)[:, None]
+            parts.append((a, b0, b1, xi, normal, gap, tributary, np.full(len(a), i, np.int32)))
+    if not parts:
+        empty = np.zeros(0)
+        return SameLayerPairs(*(np.zeros(0, np.int64),) * 3, empty, np.zeros((0, 3)), empty,
+                              empty, np.zeros(0, np.int32))  # fmt: skip
+    return SameLayerPairs(*(np.concatenate(c) for c in zip(*parts, strict=True)))
+
+
+def same_layer_groups(
+    geometry: StrandGeometry,
+    input_to_block: npt.NDArray[np.int32],
+    settings,
+    n_owned: int | None = None,
+) -> list[SegmentGroup]:
+    """The same-layer pairs of ``settings.same_layer`` as one ``SegmentGroup`` (none if "off"):
+    Hertz line contact and Mindlin friction ("hertz" compliance), or the line penalty
+    ``k_line`` and elastic slip ("penalty"). With ``n_owned`` (distributed), the pairs whose
+    node a this rank owns."""
+    if settings.same_layer == "off":
+        return []
+    pairs = same_layer_pairs(geometry, settings.same_layer)
+    rows = np.arange(len(pairs))
+    if n_owned is not None:
+        rows = owned_rows(input_to_block[pairs.stencils], n_owned, "same-layer pairs")
+    if not len(rows):
+        return []
+    layers = geometry.cable.layers
+    wire = [layers[i].wire for i in pairs.layer[rows]]
+    radius = np.array([w.diameter / 2 for w in wire])
+    mu = np.array([layers[i].friction for i in pairs.layer[rows]])
+    if settings.compliance == "penalty":
+        law = PenaltyLaw(settings.k_line * pairs.tributary[rows])
+        friction = ElasticSlip(mu, settings.g_lim) if settings.friction else None
+    else:
+        c = np.array([compliance(w.E, w.nu) for w in wire])
+        law = HertzLineLaw(radius, radius, c, c, pairs.tributary[rows])
+        E, nu = np.array([w.E for w in wire]), np.array([w.nu for w in wire])
+        friction = Mindlin(mu, mindlin_ratio(E, nu, E, nu)) if settings.friction else None
+    return [
+        SegmentGroup(
+            input_to_block[pairs.stencils[rows]], pairs.weight[rows], radius, radius,
+            pairs.normal[rows], SmoothOnset(law), friction, initial_gap=pairs.gap[rows],
+            index=rows,
+        )
+    ]  # fmt: skip

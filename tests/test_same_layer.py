@@ -1,0 +1,128 @@
+"""Contact between neighbouring wires of one layer (``strand.same_layer``): where they face each
+other, their gaps, and pairs that open and close on a tensioned 1+6."""
+
+from dataclasses import replace
+from functools import partial
+
+import numpy as np
+import pytest
+
+from strand.cable import CableError, cable_from_dict, cardinal
+from strand.contact_settings import ContactSettings
+from strand.geometry import build_geometry
+from strand.problem import StrandProblem
+from strand.same_layer import helix_clearance, same_layer_pairs
+from strand.setups.saddle import SaddleTest
+from strand.solver import LoadStepper, NewtonOptions
+
+
+def _brute_clearance(layer, samples=400_001) -> float:
+    """The same distance by dense sampling of the phase lag (independent of the search)."""
+    r, n = layer.radius, layer.wires
+    omega = np.tan(layer.alpha) / r
+    s = np.linspace(-2 * np.pi / n, 0.0, samples)
+    return float(np.sqrt(np.min(2 * r * r * (1 - np.cos(s + 2 * np.pi / n)) + (s / omega) ** 2)))
+
+
+def test_cardinal_gaps_from_its_helices():
+    """The module docstring's gaps: layer 1's six steel wires would overlap by 14.1 µm (they
+    touch), layers 2-4 stand 62.0, 78.2, 65.6 µm apart; the search agrees with dense sampling,
+    and straight wires (lay angle → 0) come to the chord 2r sin(π/n)."""
+    layers = cardinal().layers[1:]
+    gaps = [helix_clearance(lay) - lay.wire.diameter for lay in layers]
+    np.testing.assert_allclose(np.array(gaps) * 1e6, [-14.1, 62.0, 78.2, 65.6], atol=0.05)
+    for lay in layers:
+        assert helix_clearance(lay) == pytest.approx(_brute_clearance(lay), rel=1e-9)
+    flat = replace(layers[1], lay_angle=1e-4)
+    assert helix_clearance(flat) == pytest.approx(2 * flat.radius * np.sin(np.pi / 12), rel=1e-8)
+
+
+def test_pairs_cover_every_wire_once_with_their_gaps():
+    """Every wire of a helical layer faces the next: tributary lengths sum to the wire lengths
+    (less a node at each end), the facing points lie on their segments, normals lie across the
+    wires; "packed" closes every gap but one per layer, which holds the layer's spare
+    circumference (none for layer 1, whose wires touch)."""
+    g = build_geometry(cardinal(), 0.1, 4e-3)
+    nominal, packed = same_layer_pairs(g, "nominal"), same_layer_pairs(g, "packed")
+    assert np.all((nominal.weight >= 0) & (nominal.weight <= 1))
+    for i, lay in enumerate(g.cable.layers[1:], start=1):
+        sel = nominal.layer == i
+        wire_length = g.length / np.cos(lay.alpha)
+        assert nominal.tributary[sel].sum() == pytest.approx(lay.wires * wire_length, rel=0.05)
+        chord = g.points[nominal.b1[sel]] - g.points[nominal.b0[sel]]
+        cosine = np.einsum("pi,pi->p", chord, nominal.normal[sel]) / np.linalg.norm(chord, axis=1)
+        assert np.abs(cosine).max() < 0.05
+        spare = lay.wires * (helix_clearance(lay) - lay.wire.diameter)
+        assert np.allclose(nominal.gap[sel], max(spare / lay.wires, 0.0))
+        closed = np.isclose(packed.gap[sel], 0.0)
+        if spare > 0:
+            assert np.allclose(packed.gap[sel][~closed], spare)
+            assert 0 < np.sum(~closed) < 2 * g.length / 4e-3  # one wire's pairs
+        else:
+            assert np.all(closed)
+
+
+def test_settings_are_checked():
+    with pytest.raises(CableError, match="same_layer 'tight' is unknown"):
+        ContactSettings(same_layer="tight")
+    with pytest.raises(CableError, match='needs model = "small"'):
+        ContactSettings(same_layer="nominal", model="large")
+
+
+def _seven_wire(outer_diameter: float):
+    """A 1+6 of a 3.34 mm core and six wires of ``outer_diameter``, 6.06°."""
+    return cable_from_dict({
+        "name": "1+6",
+        "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
+        "layer": [{"wires": 6, "diameter": outer_diameter, "E": 180e9, "nu": 0.3,
+                   "lay_angle": 6.06, "lay": "S", "friction": 0.5}],
+    })  # fmt: skip
+
+
+def _tensioned(cable, gaps: str, tension: float = 10e3):
+    """A 0.15 m piece of ``cable`` with same-layer pairs ``gaps``, pulled to ``tension`` (N):
+    the mid-piece pairs' gaps and forces, their initial gaps, the layer's radial change (m) and
+    the strand's strain."""
+    geometry = build_geometry(cable, 0.15, 4e-3)
+    problem = StrandProblem(geometry, ContactSettings(same_layer=gaps),
+                            NewtonOptions(atol=1e-4, max_it=15), setup=SaddleTest)  # fmt: skip
+    setup = problem.setup
+    LoadStepper(problem.solver, tension / 2, tension / 10).ramp(
+        partial(setup.set, "tension"), 0.0, tension
+    )
+    group = problem.model.same_layer[0]
+    pairs = same_layer_pairs(geometry, gaps)
+    x = geometry.points + problem.model.node_values()[:, :3]
+    middle = np.abs(geometry.points[pairs.a, 2] - 0.075) < 0.025
+    dr = np.mean(np.linalg.norm(x[pairs.a[middle], :2], axis=1)) - cable.layers[1].radius
+    strain = setup.state().end_displacement / geometry.length
+    return group.state.gap[middle], group.state.force[middle], pairs.gap[middle], dr, strain
+
+
+def test_open_neighbours_approach_as_the_tensioned_layer_tightens():
+    """Tension presses layer 1 onto the core (its radius shrinks by Δr) and stretches the strand
+    by ε (the helix's angular rate falls to ω/(1 + ε)). With a nominal gap (6.3 µm) larger than
+    the change, the pairs stay open and their gaps change by the clearance of that deformed helix,
+    D(r + Δr, ω/(1 + ε)) − D(r, ω) (the two effects: −0.17 and +0.03 µm here; either alone is
+    18 % or more off)."""
+    cable = _seven_wire(3.30e-3)
+    layer = cable.layers[1]
+    gap, force, gap0, dr, strain = _tensioned(cable, "nominal")
+    assert dr < 0 and strain > 0 and np.all(force == 0)
+    r = layer.radius + dr
+    omega = np.tan(layer.alpha) / layer.radius / (1 + strain)
+    deformed = replace(layer, radius=r, lay_angle=np.degrees(np.arctan(omega * r)))
+    change = helix_clearance(deformed) - helix_clearance(layer)
+    np.testing.assert_allclose(gap - gap0, change, rtol=0.05)  # measured 3.5 %
+
+
+def test_touching_neighbours_jam_as_the_tensioned_layer_tightens():
+    """Equal wires (3.34 mm on a 3.34 mm core) whose helices would overlap: every neighbour
+    touches ("packed" and "nominal" alike), so the layer is a closed ring; tension draws it onto
+    the core and the ring jams: every pair is pressed, and both gap settings give the same."""
+    cable = _seven_wire(3.34e-3)
+    results = {gaps: _tensioned(cable, gaps) for gaps in ("packed", "nominal")}
+    gap, force, gap0, dr, _ = results["packed"]
+    assert np.all(gap0 == 0) and dr < 0
+    assert np.all(force > 0) and np.all(gap < 0)
+    np.testing.assert_allclose(results["nominal"][1], force, rtol=1e-9)

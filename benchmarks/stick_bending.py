@@ -1,0 +1,116 @@
+"""Stick bending: what same-layer contact does to a strand's moment–curvature.
+
+Run: .venv/bin/python benchmarks/stick_bending.py [strand ...] [--length L] [--same-layer S ...]
+Strands: "19" (Cardinal's core and layers 1–2, 0.3 m, 10 kN) and "cardinal" (0.6 m, 40 kN), each
+with its own friction and Hertz + Mindlin contact. For each same-layer setting (off, nominal,
+packed: ``strand.same_layer``) it loads the uniform bending test monotonically through κ = 0.002,
+0.01, 0.05, 0.1, 0.25, 0.5 1/m (nominal end curvature) and prints, one row per variant: the
+smeared estimate's stick slope with the spin free (``strand.analytical.stick_bending_estimate``),
+the first step's M/κ over EI_max, the zone moment M at each curvature beside the stick–slip law
+(cumulative pressure), the share of same-layer pairs closed at the first step, and the cost.
+Prints the machine, commit and command first; a variant that stops prints why.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import argparse
+import platform
+import subprocess
+import sys
+import time
+from functools import partial
+from pathlib import Path
+
+from strand.analytical import StickSlipLaw, stick_bending_estimate
+from strand.cable import Cable, cardinal
+from strand.contact_settings import ContactSettings
+from strand.geometry import build_geometry
+from strand.post import bending_stiffness_bounds, cell_results
+from strand.problem import StrandProblem
+from strand.setups.bending import UniformBendingTest
+from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
+
+KAPPAS = (0.002, 0.01, 0.05, 0.1, 0.25, 0.5)  # 1/m, nominal
+
+
+def strands() -> dict[str, tuple[Cable, float, float]]:
+    """name: (cable, length m, tension N)."""
+    c = cardinal()
+    return {"19": (Cable("1+6+12", c.layers[:3]), 0.3, 10e3), "cardinal": (c, 0.6, 40e3)}
+
+
+def bend(cable: Cable, length: float, tension: float, same_layer: str):
+    """Tension, then the curvatures of ``KAPPAS`` in turn; yields (zone record, problem, Newton
+    iterations so far)."""
+    geometry = build_geometry(cable, length, 4e-3)
+    problem = StrandProblem(
+        geometry, ContactSettings(same_layer=same_layer), NewtonOptions(atol=1e-3, max_it=15),
+        setup=partial(UniformBendingTest, zone=length / 3),
+    )  # fmt: skip
+    setup = problem.setup
+    pull = LoadStepper(problem.solver, tension, tension / 64)
+    pull.ramp(partial(setup.set, "tension"), 0.0, tension)
+    bends = LoadStepper(problem.solver, KAPPAS[0], KAPPAS[0] / 64, extrapolate=True)
+    for kappa in KAPPAS:
+        bends.ramp(partial(setup.set, "curvature"), setup.get("curvature"), kappa)
+        cells = cell_results(problem.model, setup.direction)
+        zone = setup.moment_curvature(cells, problem.solver.unconstrained_residual())
+        its = sum(r.iterations + r.failed_iterations for r in pull.history + bends.history)
+        yield zone, problem, its
+
+
+def row(name: str, same_layer: str) -> str:
+    cable, length, tension = strands()[name]
+    _, ei_max = bending_stiffness_bounds(cable)
+    law = StickSlipLaw(cable, tension)
+    estimate = stick_bending_estimate(cable).ratio
+    cells, slope, closed, effort = [], "", "", 0
+    t0 = time.perf_counter()
+    try:
+        for zone, problem, its in bend(cable, length, tension, same_layer):
+            k, M, effort = zone.curvature, zone.moment_zone_middle, its
+            if not cells:
+                slope = f"{M / k / ei_max:.3f}"
+                groups = problem.model.same_layer
+                closed = f"{(groups[0].state.force > 0).mean():.2f}" if groups else "-"
+            cells.append(f"{M:.2f} ({float(law.moment(k)):.2f})")
+        problem.solver.destroy()
+        outcome = ""
+    except LoadStepFailure as e:
+        outcome = f" stopped: {str(e)[:90]}"
+    cells += ["–"] * (len(KAPPAS) - len(cells))
+    seconds = time.perf_counter() - t0
+    return (f"| {cable.name}, {length:g} m, {tension / 1e3:g} kN | {same_layer} | {estimate:.3f} | "
+            f"{slope or '–'} | " + " | ".join(cells) + f" | {closed} | {seconds:.0f} s, {effort} its"
+            f"{outcome} |")  # fmt: skip
+
+
+def stamp() -> str:
+    root = Path(__file__).parents[1]
+    commit = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip()  # fmt: skip
+    return (
+        f"{time.strftime('%Y-%m-%d')}, commit {commit}, {platform.node()} "
+        f"({platform.processor() or platform.machine()}), python {' '.join(sys.argv)}"
+    )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("strand", nargs="*", default=["19", "cardinal"], choices=list(strands()))
+    parser.add_argument("--same-layer", nargs="*", default=["off", "nominal", "packed"])
+    args = parser.parse_args()
+    print(stamp())
+    head = ["strand", "same layer", "estimate", "M/κ / EI_max",
+            *(f"M at {k:g} (law)" for k in KAPPAS), "closed", "cost"]  # fmt: skip
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
+    for name in args.strand:
+        for same_layer in args.same_layer:
+            print(row(name, same_layer), flush=True)
+
+
+if __name__ == "__main__":
+    main()

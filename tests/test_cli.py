@@ -14,11 +14,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from strand_cases import SEVEN_WIRE, contents, earlier_run
 
 from strand import __version__
 from strand.case import CaseError, load_case
 from strand.cli import main
+from strand_cases import SEVEN_WIRE, contents, earlier_run
 
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
 

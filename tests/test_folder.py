@@ -5,9 +5,9 @@ line applies them through ``prepare_results_folder`` (end to end: tests/test_cli
 from __future__ import annotations
 
 import pytest
-from strand_cases import contents, earlier_run
 
 from strand.folder import RUN_MARKER, FolderError, prepare_results_folder
+from strand_cases import contents, earlier_run
 
 
 def test_a_new_folder_is_created_and_an_empty_one_used(tmp_path):

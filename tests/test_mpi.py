@@ -14,13 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 from strand.cable import cardinal
 from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.model import strand_stencils
 from strand.partition import DistributionError, owned_rows, slab_destinations
+from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 #: relative agreement (to each column's largest value) required of a distributed run
 RTOL = 1e-8

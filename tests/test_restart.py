@@ -12,12 +12,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 from strand.case import load_case
 from strand.checkpoint import read_checkpoint, write_checkpoint
 from strand.cli import main
 from strand.run import build_problem, run_case, run_programme_with_outputs
+from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 QUIET = ["output.plots=false", "output.fields=false", "fatigue.outputs=false"]
 

@@ -6,7 +6,6 @@ import csv
 
 import numpy as np
 import pytest
-from strand_cases import SEVEN_WIRE
 
 from strand.cable import cardinal
 from strand.case import CaseError, load_case
@@ -14,6 +13,7 @@ from strand.cli import main
 from strand.contact.element import ContactGroup
 from strand.contact.laws import PenaltyLaw
 from strand.post import bending_stiffness_bounds, fibre_model
+from strand_cases import SEVEN_WIRE
 
 
 def test_default_case_is_the_seed_papers_test():

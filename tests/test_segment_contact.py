@@ -2,12 +2,12 @@
 
 import numpy as np
 import pytest
-from strand_cases import fd_tangent
 
 from strand.contact.hertz import compliance, mindlin_ratio
 from strand.contact.kinematics import rotation_matrix
 from strand.contact.laws import ElasticSlip, HertzLineLaw, Mindlin, PenaltyLaw
 from strand.contact.segment import SegmentGroup
+from strand_cases import fd_tangent
 
 R = 1.66e-3  # m, wire radius
 

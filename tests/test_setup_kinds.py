@@ -11,7 +11,6 @@ from functools import partial
 
 import numpy as np
 import pytest
-from strand_cases import SEVEN_WIRE
 
 from strand import kinds
 from strand.case import CaseError, case_from_dict, load_case
@@ -20,6 +19,7 @@ from strand.kinds import NoSettings, SetupKind
 from strand.post import fibre_model, section_resultants
 from strand.setups.base import quantity
 from strand.setups.saddle import SaddleTest
+from strand_cases import SEVEN_WIRE
 
 QUICK = ["output.fields=false", "output.plots=false", "fatigue.outputs=false", 'load.kind="pull"']
 #: the command line's options for them

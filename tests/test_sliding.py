@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
 from strand.contact.laws import ElasticSlip, PenaltyLaw
 from strand.contact.sliding import SlidingGroup, SlidingWindowError
 from strand.contact_settings import ContactSettings
 from strand.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
+from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
 H = 3e-3  # m, segment length
 R = 1.5e-3  # m, wire radius

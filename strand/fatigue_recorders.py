@@ -104,8 +104,10 @@ class PairHistory(_CycleHistory):
 class WireSectionHistory(_CycleHistory):
     """``wire_sections.h5`` (``strand.history``): per element, at the tensioned state and every
     cycle step, the axial force N (N), the bending moments M₁, M₂ (N m) about e₁ (the strand's
-    outward radius; the load direction for the core) and e₂ = t × e₁, and the torque T (N m):
-    what surface stresses follow from (``strand.fatigue.stress``), and the displacement of the
+    outward radius; the load direction for the core) and e₂ = t × e₁, and the torque T = m·t
+    (N m, about the current tangent t): what surface stresses follow from
+    (``strand.fatigue.stress``); the spin θ·t (rad, the section's rotation about t: its nodes'
+    mean rotation vector projected on t, ``post.section_spin``), and the displacement of the
     core's nodes ``core_u`` (m). Static: wire, layer, initial z (m), angle φ (deg, as
     ``axial_forces.csv``), wire diameter (m), and the core nodes' initial z ``core_z``."""
 
@@ -129,7 +131,8 @@ class WireSectionHistory(_CycleHistory):
         e1, e2 = section_frames(c.tangent, c.radial, fallback=self.direction)
         m = section_components(c.moment, c.tangent, e1, e2)
         u = self.model.positions()[self.core] - self.model.geometry.points[self.core]
-        return {"axial": c.axial, "m1": m[:, 0], "m2": m[:, 1], "torque": m[:, 2], "core_u": u}
+        return {"axial": c.axial, "m1": m[:, 0], "m2": m[:, 1], "torque": c.torque,
+                "spin": c.spin, "core_u": u}  # fmt: skip
 
     def close(self) -> None:
         self.writer.close()

@@ -1,5 +1,6 @@
-"""Post-processing of a strand state: wire axial forces, angular sectors, midspan moment–curvature,
-and the analytical references they are compared with (fibre model, bending-stiffness bounds).
+"""Post-processing of a strand state: wire axial forces, spins and torques, angular sectors,
+midspan moment–curvature, per-layer fits of the wire fields against φ, and the analytical
+references they are compared with (fibre model, bending-stiffness bounds).
 
 Conventions (docs/theory.md §4). The lateral load acts along ``direction`` d; the neutral axis of bending
 is s = e_z × d. A wire's angle φ is measured from s towards d, so φ = +90° is the fibre stretched
@@ -25,7 +26,13 @@ __all__ = [
     "CellEvaluator",
     "CellResults",
     "cell_results",
+    "section_spin",
+    "section_torque",
     "sector_of",
+    "LayerFields",
+    "harmonic_fit",
+    "layer_fields",
+    "zone_layer_fields",
     "section_resultants",
     "fibre_model",
     "bending_stiffness_bounds",
@@ -39,8 +46,9 @@ Array = npt.NDArray[np.float64]
 @dataclass
 class CellResults:
     """Per element, in the geometry's cell order: wire, layer, z (m, initial midpoint), angle φ
-    (deg, current, about the core; 0 for the core itself), axial force N (N), and the spatial
-    section force n (N) and moment m (N m) vectors."""
+    (deg, current, about the core; 0 for the core itself), axial force N (N), the spatial
+    section force n (N) and moment m (N m) vectors, the current unit tangent t and radial
+    vector, the spin θ·t (rad, ``section_spin``) and the torque m·t (N m, ``section_torque``)."""
 
     wire: npt.NDArray[np.int32]
     layer: npt.NDArray[np.int32]
@@ -51,6 +59,8 @@ class CellResults:
     moment: Array
     tangent: Array | None = None  # (n, 3) current unit tangent
     radial: Array | None = None  # (n, 3) current midpoint less the core's point at the same z
+    spin: Array | None = None  # (n,) rotation of the section about t, rad
+    torque: Array | None = None  # (n,) torsional moment about t, N m
 
 
 class CellEvaluator:
@@ -80,6 +90,19 @@ class CellEvaluator:
         return out
 
 
+def section_spin(theta: Array, cells: npt.NDArray[np.integer], tangent: Array) -> Array:
+    """Rotation (rad) of each element's section about its own current unit ``tangent`` (E, 3):
+    the mean of its two nodes' rotation vectors ``theta`` (N, 3; total, from the initial
+    configuration) projected on the tangent, θ·t; ``cells`` (E, 2) are the nodes."""
+    return np.einsum("ij,ij->i", theta[cells].mean(axis=1), tangent)
+
+
+def section_torque(moment: Array, tangent: Array) -> Array:
+    """Torsional moment (N m) of each element's section: its spatial moment resultant ``moment``
+    (E, 3; the beam's m = Λ Λ₀ M) projected on its current unit ``tangent`` (E, 3), m·t."""
+    return np.einsum("ij,ij->i", moment, tangent)
+
+
 def sector_of(phi_deg: Array, sectors: int = 8) -> npt.NDArray[np.int32]:
     """Angular sector of each angle φ (deg): ``sectors`` bins of 360/sectors degrees, bin 0
     starting at φ = −180°. With 8 sectors, bin 6 is [90°, 135°): next to the stretched fibre."""
@@ -90,12 +113,13 @@ def sector_of(phi_deg: Array, sectors: int = 8) -> npt.NDArray[np.int32]:
 def cell_results(
     model: StrandModel, direction=(1.0, 0.0, 0.0), evaluator: CellEvaluator | None = None
 ) -> CellResults:
-    """Axial forces and section resultants of every element, with its wire, layer, z and φ
-    (measured from the neutral axis e_z × ``direction`` towards ``direction``)."""
+    """Axial forces, section resultants, spins and torques of every element, with its wire,
+    layer, z and φ (measured from the neutral axis e_z × ``direction`` towards ``direction``)."""
     g = model.geometry
     evaluator = evaluator or CellEvaluator(model)
     values = evaluator()
-    x = model.positions()
+    w = model.node_values()
+    x = g.points + w[:, :3]
     mid = x[g.cells].mean(axis=1)
     core = x[g.wire_offsets[0] : g.wire_offsets[1]]
     z0 = g.points[g.cells].mean(axis=1)[:, 2]
@@ -107,9 +131,10 @@ def cell_results(
     phi = np.where(g.cell_layer == 0, 0.0, np.degrees(np.arctan2(r @ d, r @ s)))
     tangent = x[g.cells[:, 1]] - x[g.cells[:, 0]]
     tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+    moment = values[:, 4:7]
     return CellResults(
-        g.cell_wire, g.cell_layer, z0, phi, values[:, 0], values[:, 1:4], values[:, 4:7],
-        tangent, r,
+        g.cell_wire, g.cell_layer, z0, phi, values[:, 0], values[:, 1:4], moment, tangent, r,
+        section_spin(w[:, 3:], g.cells, tangent), section_torque(moment, tangent),
     )  # fmt: skip
 
 
@@ -126,6 +151,81 @@ def section_resultants(model: StrandModel, cells: CellResults, z: float) -> tupl
     core = at[g.cell_wire[cut] == 0][0]
     M = (np.cross(at - core, cells.force[cut]) + cells.moment[cut]).sum(axis=0)
     return M, cells.force[cut].sum(axis=0)
+
+
+@dataclass(frozen=True)
+class LayerFields:
+    """Per helical layer 1…N, at one state of uniform bending under tension, the amplitudes of
+    the changes of the wire fields since the tensioned state over the measuring zone's cells,
+    fitted against φ (``layer_fields``), per unit zone curvature κ.
+
+    Attributes:
+        curvature: κ, 1/m.
+        axial_share: the axial force's sin φ amplitude over its plane-section value K r κ
+            (K = E A cos²α, r the layer's radius).
+        spin: the spin's cos φ amplitude over κ, rad m.
+        torque: the torque's sin φ amplitude over κ, N m² (a spin Θ cos φ along a helix, where
+            dφ/ds = ±sin α / r by the lay's hand, twists the wire by ∓Θ (sin α / r) sin φ per
+            unit length: the torque is in phase with the axial force, not with the spin).
+        cells: how many cells each layer's fit took.
+    """
+
+    curvature: float
+    axial_share: Array
+    spin: Array
+    torque: Array
+    cells: npt.NDArray[np.int64]
+
+
+def harmonic_fit(phi_deg: Array, values: Array) -> Array:
+    """(c, a, b) of the least-squares fit values ≈ c + a sin φ + b cos φ over the angles
+    ``phi_deg`` (deg); NaN with fewer than three values. The constant and the other harmonic
+    are fitted with the one wanted so that neither leaks into it where φ is sampled unevenly."""
+    phi = np.radians(np.asarray(phi_deg, float))
+    if len(phi) < 3:
+        return np.full(3, np.nan)
+    basis = np.column_stack([np.ones_like(phi), np.sin(phi), np.cos(phi)])
+    return np.linalg.lstsq(basis, np.asarray(values, float), rcond=None)[0]
+
+
+def layer_fields(
+    layer: npt.ArrayLike, phi: Array, axial: Array, spin: Array, torque: Array,
+    curvature: float, plane_axial: Array,
+) -> LayerFields:  # fmt: skip
+    """Per helical layer i = 1 … len(``plane_axial``), from its cells (``layer`` == i): the
+    sin φ amplitude of the axial force change ``axial`` (N) over ``plane_axial[i − 1]`` × κ
+    (K r, N m: the plane-section change is K r κ sin φ), the cos φ amplitude of the spin change
+    ``spin`` (rad) and the sin φ amplitude of the torque change ``torque`` (N m), both over
+    κ = ``curvature`` (1/m) (``LayerFields``). φ (deg) from the neutral axis towards the
+    stretched side (``cell_results``)."""
+    layer = np.asarray(layer)
+    n = len(plane_axial)
+    fits = np.full((3, n), np.nan)
+    count = np.zeros(n, dtype=np.int64)
+    for i in range(1, n + 1):
+        mine = layer == i
+        count[i - 1] = mine.sum()
+        fits[:, i - 1] = [harmonic_fit(phi[mine], values[mine])[k]
+                          for values, k in ((axial, 1), (spin, 2), (torque, 1))]  # fmt: skip
+    return LayerFields(
+        float(curvature), fits[0] / (np.asarray(plane_axial) * curvature),
+        fits[1] / curvature, fits[2] / curvature, count,
+    )  # fmt: skip
+
+
+def zone_layer_fields(
+    state: CellResults, tensioned: CellResults, zone: tuple[float, float], curvature: float,
+    plane_axial: Array,
+) -> LayerFields:  # fmt: skip
+    """``layer_fields`` of the cells whose initial midpoint lies in ``zone`` = (z_min, z_max)
+    (m), from the changes of axial force, spin and torque between ``tensioned`` and ``state``,
+    at ``state``'s φ."""
+    inside = (state.z >= zone[0]) & (state.z <= zone[1])
+    return layer_fields(
+        state.layer[inside], state.phi[inside],
+        *((getattr(state, k) - getattr(tensioned, k))[inside] for k in ("axial", "spin", "torque")),
+        curvature, plane_axial,
+    )  # fmt: skip
 
 
 def fibre_model(cable: Cable, tension: float) -> dict:

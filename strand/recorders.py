@@ -230,12 +230,14 @@ class FieldSeries:
 
 class KeyStates:
     """Keeps the cell results and contact pair results of the tensioned state (last step before
-    the cycle), and the cell results of the largest abs(cycle load) reached, with the nodal unknowns
-    there ((N, 6) in the geometry's point order; for summary and figures)."""
+    the cycle), the cell results of the first cycle step, and those of the largest abs(cycle
+    load) reached, with the nodal unknowns there ((N, 6) in the geometry's point order; for
+    summary and figures)."""
 
     def __init__(self):
         self.tensioned = None
         self.tensioned_pairs = None
+        self.first_cycle = None
         self.peak = None
         self.peak_w = None
         self._peak_load = 0.0
@@ -244,7 +246,10 @@ class KeyStates:
         if not ctx.cycle:
             self.tensioned = ctx.cells
             self.tensioned_pairs = ctx.pairs
-        elif abs(ctx.step.load) > abs(self._peak_load):
+            return
+        if self.first_cycle is None:
+            self.first_cycle = ctx.cells
+        if abs(ctx.step.load) > abs(self._peak_load):
             self._peak_load = ctx.step.load
             self.peak = ctx.cells
             self.peak_w = ctx.problem.model.node_values()

@@ -29,6 +29,7 @@ class RunResult:
     slip: list[SlipFractions] = field(default_factory=list)
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: PairResults | None = None  # the contact pairs there
+    first_cycle: CellResults | None = None  # at the first step of the cycle
     #: what the set-up kind's analytical reference predicts for the run (``SetupKind.reference``)
     reference: Any = None
     peak: CellResults | None = None  # at the largest abs(cycle load) reached

@@ -205,7 +205,7 @@ def run_programme_with_outputs(
     _take_programme(problem, programme, recording, start, stream)
     keys = recording.key_states
     result.tensioned, result.peak, result.peak_w = keys.tensioned, keys.peak, keys.peak_w
-    result.tensioned_pairs = keys.tensioned_pairs
+    result.tensioned_pairs, result.first_cycle = keys.tensioned_pairs, keys.first_cycle
     result.bending, result.slip = recording.bending.rows, recording.slip.rows
     result.reference = kind_of(case).reference(case, result)
     result.seconds = time.perf_counter() - t_start

@@ -3,8 +3,10 @@ by end rotations (``strand.setups.bending.UniformBendingTest``): the section's m
 
 Its own settings: ``[load] curvature`` (1/m, the nominal curvature amplitude) and ``zone`` (m, the
 central measuring zone), ``[steps] curvature`` and ``curvature_max`` (1/m). Its reference: the
-stick–slip law (``analytical.StickSlipLaw``, virgin curve and Masing loops); its figure: the
-zone's M–κ loop with the section moments' uniformity. Units: m, N, N m, 1/m.
+stick–slip law (``analytical.StickSlipLaw``, virgin curve and Masing loops), and per layer the
+wires' axial force, spin and torque in the zone beside the smeared estimate of wires rolling on
+stuck ties (``analytical.stick_bending_estimate``); its figure: the zone's M–κ loop with the
+section moments' uniformity. Units: m, N, N m, 1/m, rad.
 """
 
 from __future__ import annotations
@@ -16,8 +18,10 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from ..analytical import StickEstimate
 from ..cable import Cable
 from ..case import Case, CaseError
+from ..post import LayerFields
 from ..recorders import SlipFractions, StepBending
 from ..setups.bending import ZoneBending
 from . import SetupKind
@@ -27,7 +31,9 @@ __all__ = [
     "BendingLoad",
     "BendingSteps",
     "BendingReport",
+    "StickRolling",
     "uniform_bending_report",
+    "stick_rolling",
 ]
 
 
@@ -73,14 +79,35 @@ class UniformBending(SetupKind):
         return partial(UniformBendingTest, zone=self.load(case).zone, direction=case.load.direction)
 
     def reference(self, case: Case, result) -> BendingReport | None:
-        """What the run measured beside the stick–slip law (``uniform_bending_report``)."""
-        return uniform_bending_report(case.cable, case.load.tension, result.bending, result.slip)
+        """What the run measured beside the stick–slip law (``uniform_bending_report``), with
+        the wires' fields per layer (``stick_rolling``)."""
+        L, zone = case.mesh.length, self.load(case).zone
+        rolling = stick_rolling(case.cable, case.load.tension, (L / 2 - zone / 2, L / 2 + zone / 2),
+                                result)  # fmt: skip
+        return uniform_bending_report(
+            case.cable, case.load.tension, result.bending, result.slip, rolling
+        )
 
     def summary_lines(self, case: Case, result) -> list[str]:
         return bending_lines(self.load(case).zone, result.reference)
 
     def figures(self, case: Case, result, note: str = "") -> list[Path]:
         return [bending_figure(case, result, note)]
+
+
+@dataclass(frozen=True)
+class StickRolling:
+    """The wires' fields per helical layer in the measuring zone (``post.LayerFields``: axial
+    force share of plane sections, spin and torque per unit curvature) at the first cycle step
+    (the stick regime) and at the largest curvature, with M/κ there over EI_max, beside the
+    smeared estimate of wires rolling on stuck ties (``analytical.stick_bending_estimate``;
+    its spins and torques are magnitudes)."""
+
+    first: LayerFields
+    largest: LayerFields
+    slope_first: float  # M/κ over EI_max at the first cycle step
+    slope_largest: float  # M/κ over EI_max at the largest curvature
+    estimate: StickEstimate
 
 
 @dataclass(frozen=True)
@@ -101,6 +128,8 @@ class BendingReport:
         slip_onset_law: the law's κ_b per layer, by friction rule.
         loop_area: a whole cycle's M–κ loop area, J/m (None without one).
         masing_area: Masing's loop area on the same curvature path, J/m, by friction rule.
+        rolling: the wires' fields per layer beside the rolling estimate (None without the
+            tensioned state, e.g. a run restarted within the cycle).
     """
 
     ei_min: float
@@ -113,6 +142,7 @@ class BendingReport:
     slip_onset_law: dict[str, npt.NDArray[np.float64]]
     loop_area: float | None = None
     masing_area: dict[str, float] | None = None
+    rolling: StickRolling | None = None
 
 
 #: the curvatures (1/m) the report's table gives the first loading leg at
@@ -120,11 +150,12 @@ REPORT_CURVATURES = (0.001, 0.005, 0.01, 0.05, 0.1, 0.25, 0.5)
 
 
 def uniform_bending_report(
-    cable: Cable, tension: float, bending: list[StepBending], slip: list[SlipFractions]
-) -> BendingReport | None:
+    cable: Cable, tension: float, bending: list[StepBending], slip: list[SlipFractions],
+    rolling: StickRolling | None = None,
+) -> BendingReport | None:  # fmt: skip
     """What the uniform bending test measured (its ``ZoneBending`` records at the cycle steps,
-    and the slipping shares of every step), beside the stick–slip law (``analytical``); None
-    before the first cycle step."""
+    and the slipping shares of every step), beside the stick–slip law (``analytical``), with
+    the wires' fields per layer ``rolling``; None before the first cycle step."""
     from ..analytical import StickSlipLaw, loop_area, masing
 
     if not bending:
@@ -164,7 +195,33 @@ def uniform_bending_report(
         slip_onset_law={r: law.slip_onset for r, law in laws.items()},
         loop_area=loop,
         masing_area=masing_area,
+        rolling=rolling,
     )
+
+
+def stick_rolling(
+    cable: Cable, tension: float, zone: tuple[float, float], result
+) -> StickRolling | None:
+    """The wires' fields per layer in ``zone`` = (z_min, z_max) (m) at the first cycle step and
+    at the largest curvature of ``result`` (its ``CellResults`` kept there and at the tensioned
+    state, and its ``ZoneBending`` records), beside ``stick_bending_estimate(cable)``; None
+    without those states or with a zero curvature."""
+    from ..analytical import StickSlipLaw, stick_bending_estimate
+    from ..post import zone_layer_fields
+
+    base, peak = result.tensioned, result.peak_step
+    if base is None or result.first_cycle is None or result.peak is None or not result.bending:
+        return None
+    law = StickSlipLaw(cable, tension)
+    plane = np.array([lay.K * lay.r for lay in law.layers])  # N m: axial force per unit κ
+    rows = {row.step: row.measures for row in result.bending}
+    first, largest = result.bending[0].measures, rows.get(peak.number)
+    if largest is None or 0.0 in (first.curvature, largest.curvature):
+        return None
+    fields = [zone_layer_fields(cells, base, zone, zb.curvature, plane)
+              for cells, zb in ((result.first_cycle, first), (result.peak, largest))]  # fmt: skip
+    slopes = [zb.moment_zone_middle / zb.curvature / law.ei_max for zb in (first, largest)]
+    return StickRolling(*fields, *slopes, stick_bending_estimate(cable))
 
 
 def slip_onset(
@@ -207,6 +264,31 @@ def bending_lines(zone: float, r: BendingReport | None) -> list[str]:
         lines.append(
             f"  layer {i}: model {k:.4f}   κ_b cumulative {law['cumulative'][i - 1]:.4f}, "
             f"own tension {law['own_tension'][i - 1]:.4f}"
+        )
+    if r.rolling is not None:
+        lines += rolling_lines(r.rolling)
+    return lines
+
+
+def rolling_lines(r: StickRolling) -> list[str]:
+    """The table of the wires' fields per layer (``StickRolling``) in the summary."""
+    e = r.estimate
+    a, b = r.first, r.largest
+    lines = [
+        "wire fields per layer in the zone, changes since tension per unit κ, fitted over the "
+        "zone's cells against φ:",
+        "  axial force a sin φ over K r κ (K = E A cos²α), spin b cos φ, torque c sin φ; at the "
+        f"first step κ = {a.curvature:.4g} 1/m (M/κ {r.slope_first:.3f} EI_max)",
+        f"  and the largest κ = {b.curvature:.4g} 1/m (M/κ {r.slope_largest:.3f} EI_max); "
+        f"estimate of wires rolling on stuck ties: M/κ {e.ratio:.3f} EI_max, magnitudes",
+        "  layer   axial force share        spin (rad m)               torque (N m²)",
+        "          first largest estimate   first  largest estimate    first  largest estimate",
+    ]
+    for i in range(len(e.axial_share)):
+        lines.append(
+            f"  {i + 1:5d}   {a.axial_share[i]:5.2f} {b.axial_share[i]:7.2f} "
+            f"{e.axial_share[i]:8.2f}   {a.spin[i]:6.3f} {b.spin[i]:8.3f} {e.spin[i]:8.3f}   "
+            f"{a.torque[i]:6.2f} {b.torque[i]:8.2f} {e.torque[i]:8.2f}"
         )
     return lines
 

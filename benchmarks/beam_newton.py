@@ -19,7 +19,7 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 from strand.mesh import beam_space, input_to_block, polyline_mesh
-from strand.solver import NewtonSolver, NodalLoad
+from strand.solver import NodalLoad, NonlinearProblem
 
 
 def main(n_cells: int = 10_000) -> None:
@@ -50,12 +50,12 @@ def main(n_cells: int = 10_000) -> None:
         dofs = fem.locate_dofs_topological(V.sub(i), 0, tip)
         bcs.append(fem.dirichletbc(0.0, dofs, V.sub(i)))
     load = NodalLoad([input_to_block(V)[-1]], [[0.0, 0.0, 20.0, 0.0, 0.0, 0.0]], 1.0)
-    solver = NewtonSolver(F, w, bcs, terms=[load])
+    problem = NonlinearProblem(F, w, bcs, terms=[load])
     t0 = time.perf_counter()
-    result = solver.solve()
+    result = problem.solve()
     total = time.perf_counter() - t0
     its = max(result.iterations, 1)
-    tm = solver.timings
+    tm = problem.timings
     lu = total - tm["residual"] - tm["jacobian"]
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     rows = [

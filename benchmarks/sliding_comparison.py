@@ -46,7 +46,7 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
     lateral.ramp(problem.setup.set_lateral, 0.0, p_max, "lateral")
     seconds = time.perf_counter() - t0
     history = steps.history + lateral.history
-    factor = problem.solver.snes.getKSP().getPC().getFactorMatrix()
+    factor = problem.solver.solver.getKSP().getPC().getFactorMatrix()
     timings = problem.solver.timings
     return {
         "model": model,

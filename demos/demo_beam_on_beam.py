@@ -43,7 +43,7 @@ from forms import CircularSection, ReissnerBeam
 from strand.contact import PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.mesh import beam_space, polyline_mesh
 from strand.parallel import serial_only
-from strand.solver import NewtonSolver
+from strand.solver import NonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 
@@ -89,8 +89,8 @@ contact = contact_terms(pairs, PenaltyLaw(k_line * pairs.tributary))
 ends = np.r_[a[[0, -1]], b[[0, -1]]]
 bcs = [fem.dirichletbc(0.0, 6 * ends + c, V.sub(c)) for c in (1, 2, 3)]
 bcs.append(fem.dirichletbc(0.0, 6 * np.r_[a[0], b[0]], V.sub(0)))
-solver = NewtonSolver(F, w, bcs, terms=[contact])
-result = solver.solve()
+problem = NonlinearProblem(F, w, bcs, terms=[contact])
+result = problem.solve()
 print(f"Newton: {result.iterations} iterations, residual {result.residual:.1e} N")
 assert result.converged
 

@@ -34,7 +34,7 @@ from strand.mesh import beam_space, straight_beam_mesh
 from strand.output import FieldWriter
 from strand.parallel import serial_only
 from strand.plots import offscreen_plotter, save, tubes
-from strand.solver import LoadStepper, NewtonSolver
+from strand.solver import LoadStepper, NonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 
@@ -80,12 +80,12 @@ clamp = fem.dirichletbc(np.zeros(6), fem.locate_dofs_topological(V, 0, root), V)
 
 # ## Newton load stepping
 #
-# `NewtonSolver` runs PETSc SNES (Newton, MUMPS LU) with the consistent tangent from
-# `ufl.derivative`. `LoadStepper` raises the load factor, growing the step after easy solves and
+# strand's `NonlinearProblem` (dolfinx's, extended) is solved by PETSc SNES (Newton, MUMPS LU)
+# with the consistent tangent from `ufl.derivative`. `LoadStepper` raises the load factor, growing the step after easy solves and
 # halving it after failures; results are written after every converged step.
 
 out = Path("results/demo_cantilever_rollup")
-solver = NewtonSolver(F, w, [clamp])
+problem = NonlinearProblem(F, w, [clamp])
 M_full = 2 * np.pi * EI / L
 tip_block = int(fem.locate_dofs_topological(V, 0, tip)[0])
 with FieldWriter(out / "rollup.xdmf", beam) as writer:
@@ -94,7 +94,7 @@ with FieldWriter(out / "rollup.xdmf", beam) as writer:
         writer.write(step.load)
         print(f"M/M_full = {step.load:.3f}: {step.iterations} Newton iterations")
 
-    stepper = LoadStepper(solver, first_step=0.1, min_step=1e-3, max_step=0.1, on_step=report)
+    stepper = LoadStepper(problem, first_step=0.1, min_step=1e-3, max_step=0.1, on_step=report)
     stepper.ramp(lambda lam: setattr(moment, "value", [0.0, 0.0, lam * M_full]), 0.0, 1.0)
 
 # The tip is back at the root, and the tip section has turned by $2\pi$:

@@ -47,7 +47,7 @@ from forms import CircularSection, ReissnerBeam
 from strand.contact import ElasticSlip, PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.mesh import beam_space, polyline_mesh
 from strand.parallel import serial_only
-from strand.solver import LoadStepper, NewtonSolver, NodalLoad
+from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 
@@ -85,18 +85,18 @@ bcs = [fem.dirichletbc(shear, 6 * a, V.sub(0))]
 bcs += [fem.dirichletbc(0.0, 6 * a + c, V.sub(c)) for c in range(1, 6)]
 bcs += [fem.dirichletbc(0.0, 6 * b[[0, -1]] + c, V.sub(c)) for c in (0, 1, 3, 4, 5)]
 press = NodalLoad(b[[0, -1]], [[0.0, 0.0, -P / 2, 0.0, 0.0, 0.0]] * 2)
-solver = NewtonSolver(beam.residual(), w, bcs, terms=[contact, press])
+problem = NonlinearProblem(beam.residual(), w, bcs, terms=[contact, press])
 
 # ## Press, then shear to and fro
 #
 # `LoadStepper` moves a load parameter in steps, halving them if Newton fails; after each
 # converged step we record the shear $s$ and the friction force $Q$ on the pair.
 
-LoadStepper(solver, 0.25, 1e-3).ramp(lambda f: setattr(press, "factor", f), 0.0, 1.0)
+LoadStepper(problem, 0.25, 1e-3).ramp(lambda f: setattr(press, "factor", f), 0.0, 1.0)
 print(f"pressed: p = {contact.state.force[0]:.6g} N, gap = {contact.state.gap[0]:.3e} m")
 loop = [(0.0, 0.0)]  # (s, Q): Q is the friction force on b, minus the traction on a
 record = lambda step: loop.append((float(shear.value), -contact.state.traction[0, 0]))  # noqa: E731
-stepper = LoadStepper(solver, 2e-6, 1e-8, max_step=2e-6, on_step=record)
+stepper = LoadStepper(problem, 2e-6, 1e-8, max_step=2e-6, on_step=record)
 for start, end in [(0.0, 30e-6), (30e-6, -30e-6), (-30e-6, 30e-6)]:
     stepper.ramp(lambda v: setattr(shear, "value", v), start, end)
 s_num, Q_num = np.array(loop).T

@@ -47,7 +47,7 @@ from forms import CircularSection, ReissnerBeam
 from strand.contact import ElasticSlip, PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.mesh import beam_space, polyline_mesh
 from strand.parallel import serial_only
-from strand.solver import LoadStepper, NewtonSolver
+from strand.solver import LoadStepper, NonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 
@@ -100,8 +100,8 @@ def set_slide(delta: float) -> None:
     along[0].value, along[1].value = delta * np.sin(alpha), delta * np.cos(alpha)
 
 
-solver = NewtonSolver(beam.residual(), w, bcs, terms=[contact])
-stepper = LoadStepper(solver, first_step=2e-5, min_step=1e-8, max_step=2e-5)
+problem = NonlinearProblem(beam.residual(), w, bcs, terms=[contact])
+stepper = LoadStepper(problem, first_step=2e-5, min_step=1e-8, max_step=2e-5)
 T0, TB = 1000.0, 1800.0  # N
 delta0 = T0 * S / (E * A)  # the wire's stretch at T0
 stepper.ramp(set_slide, 0.0, delta0)

@@ -18,9 +18,10 @@ from mpi4py import MPI
 from .contact_settings import ContactSettings
 from .geometry import StrandGeometry
 from .model import StrandModel
+from .pair_results import PairResults
 from .setups.base import TestSetup
 from .setups.saddle import SaddleTest
-from .solver import NewtonOptions, NewtonSolver
+from .solver import NewtonOptions, NonlinearProblem
 
 __all__ = ["StrandProblem"]
 
@@ -59,8 +60,7 @@ class StrandProblem:
             mumps["mat_mumps_icntl_14"] = 100
         options = options or NewtonOptions()
         options = replace(options, petsc={**mumps, **options.petsc})
-        # ``NewtonSolver`` (a ``NonlinearProblem``) for its ``snes``, which callers still read
-        self.solver = NewtonSolver(
+        self.solver = NonlinearProblem(
             self.model.beam.residual(),
             self.model.w,
             self.setup.bcs,
@@ -105,5 +105,5 @@ class StrandProblem:
     def positions(self) -> Array:
         return self.model.positions()
 
-    def pair_results(self) -> dict[str, Array]:
+    def pair_results(self) -> PairResults:
         return self.model.pair_results()

@@ -12,7 +12,7 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam, moment_virtual_work
 from strand.mesh import beam_space, straight_beam_mesh
-from strand.solver import NewtonOptions, NewtonSolver
+from strand.solver import NewtonOptions, NonlinearProblem
 
 D, E, NU = 0.01, 210e9, 0.3  # m, Pa, -
 
@@ -25,7 +25,7 @@ class Cantilever:
     beam: ReissnerBeam
     force: fem.Constant  # spatial tip force (N)
     moment: fem.Constant  # spatial tip moment (N m)
-    solver: NewtonSolver
+    solver: NonlinearProblem
     tip_block: int
     length: float
 
@@ -70,7 +70,7 @@ def cantilever(
         - moment_virtual_work(moment, beam.theta, v_t) * ds(1)
     )
     bc = fem.dirichletbc(np.zeros(6), fem.locate_dofs_topological(V, 0, root), V)
-    solver = NewtonSolver(F, w, [bc], terms=terms, options=options or NewtonOptions())
+    solver = NonlinearProblem(F, w, [bc], terms=terms, options=options or NewtonOptions())
     tip_block = int(fem.locate_dofs_topological(V, 0, tip)[0])
     return Cantilever(mesh, V, w, beam, force, moment, solver, tip_block, length)
 

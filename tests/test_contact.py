@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 from dolfinx import fem
 from mpi4py import MPI
-from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
 from forms import CircularSection, ReissnerBeam
 from strand.cable import CableError
@@ -31,8 +30,9 @@ from strand.geometry import LINE, POINT
 from strand.mesh import beam_space, input_to_block, polyline_mesh
 from strand.problem import StrandProblem
 from strand.setups.saddle import saddle_weights
-from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NewtonSolver, NodalLoad
+from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NodalLoad, NonlinearProblem
 from strand.strand_contact import centreline_gaps
+from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
 R_A, R_B = 1.5e-3, 2.0e-3  # m
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6
@@ -239,13 +239,13 @@ def test_crossed_beams_share_a_load_through_the_contact(angle):
     P = 2.0  # N: deflection 50 µm = d/60, so the membrane stiffening stays below 1e-3
     # the discrete midspan stiffness of one beam, at the load each beam will carry (P/2)
     load.factor = P / 2
-    alone = NewtonSolver(beam.residual(), w, [bc], terms=[load], prefix="alone_")
+    alone = NonlinearProblem(beam.residual(), w, [bc], terms=[load], petsc_options_prefix="alone_")
     assert alone.solve().converged
     k_beam = -P / 2 / w.x.array.reshape(-1, 6)[b, 2]
     assert k_beam == pytest.approx(clamped_clamped_stiffness(d, E, nu, length), rel=5e-3)
     w.x.array[:] = 0.0
     load.factor = P
-    solver = NewtonSolver(beam.residual(), w, [bc], terms=[group, load])
+    solver = NonlinearProblem(beam.residual(), w, [bc], terms=[group, load])
     result = solver.solve()
     assert result.converged and result.iterations <= 4
     p_expected = P / (2 + k_beam / K_N)
@@ -356,7 +356,7 @@ def test_newton_converges_quadratically_on_a_seven_wire_strand(normal):
     iterates = []
     options = NewtonOptions(atol=1e-12, rtol=1e-16, stol=0.0, max_it=6)
     problem = StrandProblem(geometry, ContactSettings(normal=normal), options)
-    snes = problem.solver.snes
+    snes = problem.solver.solver
     problem.solver.monitor = lambda i, r: iterates.append(snes.getSolution().array_r.copy())
     histories = []
     for T in (10e3, 40e3):  # the second step carries friction (K_T from the first)
@@ -502,7 +502,7 @@ def test_a_diverged_newton_under_friction_is_cut_not_accepted():
     press = NodalLoad([i2b[b]], [[0, 0, -2.0, 0, 0, 0]], 1.0)
     drag = NodalLoad([i2b[b]], [[1.0, 0, 0, 0, 0, 0]], 0.0)
     options = NewtonOptions(atol=1e-7)
-    solver = NewtonSolver(beam.residual(), w, bcs, terms=[group, press, drag], options=options)
+    solver = NonlinearProblem(beam.residual(), w, bcs, terms=[group, press, drag], options=options)
     assert solver.solve().converged
     solver.commit()
     mu_p = MU * group.state.force[0]

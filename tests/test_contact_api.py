@@ -22,7 +22,7 @@ from strand.contact import (
 )
 from strand.contact.hertz import point_coefficient
 from strand.mesh import beam_space, polyline_mesh
-from strand.solver import NewtonSolver, NodalLoad
+from strand.solver import NodalLoad, NonlinearProblem
 
 R = 1.5e-3  # m, both beams
 E, NU = 200e9, 0.3
@@ -141,12 +141,12 @@ def pressed_by_a_prescribed_beam():
     contact = contact_terms(pairs, PenaltyLaw(K_N))
     # the upper beam's own midspan stiffness, from a unit load on it alone
     unit = NodalLoad([b[20]], [[0, 0, 1, 0, 0, 0]], 0.05)  # N, about the contact's force
-    alone = NewtonSolver(beam.residual(), w, bcs, terms=[unit])
+    alone = NonlinearProblem(beam.residual(), w, bcs, terms=[unit])
     assert alone.solve().converged
     k_beam = 0.05 / w.x.array.reshape(-1, 6)[b[20], 2]
     alone.destroy()
     w.x.array[:] = 0.0
-    solver = NewtonSolver(beam.residual(), w, bcs, terms=[contact])
+    solver = NonlinearProblem(beam.residual(), w, bcs, terms=[contact])
     return solver, contact, lift, gap0, 1.0 / (1.0 / K_N + 1.0 / k_beam)
 
 
@@ -198,7 +198,7 @@ def test_large_sliding_pairs_from_node_pairs_press_then_follow_the_slide():
     bcs += [fem.dirichletbc(slide, 6 * a + 1, V.sub(1)), fem.dirichletbc(lift, 6 * a + 2, V.sub(2))]
 
     def k_series(node):  # the contact in series with b's own stiffness at ``node``
-        alone = NewtonSolver(
+        alone = NonlinearProblem(
             beam.residual(), w, bcs, terms=[NodalLoad([node], [[0, 0, 1, 0, 0, 0]], 0.05)]
         )
         assert alone.solve().converged
@@ -215,7 +215,7 @@ def test_large_sliding_pairs_from_node_pairs_press_then_follow_the_slide():
             terms = [contact_terms(pairs, PenaltyLaw(K_N))]
         else:
             terms = sliding_terms(V, pairs, [a, b], 15e-3, PenaltyLaw(K_N))
-        solver = NewtonSolver(beam.residual(), w, bcs, terms=terms)
+        solver = NonlinearProblem(beam.residual(), w, bcs, terms=terms)
         for value in (0.5 * gap0, 3 * gap0):
             lift.value = value
             assert solver.solve().converged

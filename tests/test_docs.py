@@ -22,7 +22,7 @@ def test_docs_build_without_warnings_and_document_the_api(tmp_path):
     )  # fmt: skip
     assert run.returncode == 0, run.stderr[-3000:]
     api = (tmp_path / "api.html").read_text()
-    for name in ("NewtonSolver", "ContactGroup", "HertzPointLaw", "StickSlipLaw", "run_case",
+    for name in ("NonlinearProblem", "ContactGroup", "HertzPointLaw", "StickSlipLaw", "run_case",
                  "prepare_results_folder", "ReissnerBeam", "load_case"):  # fmt: skip
         assert f'id="{name}"' in api or f".{name}" in api, name
     theory = (tmp_path / "theory.html").read_text()

@@ -11,7 +11,6 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from strand_cases import SEVEN_WIRE
 
 from beam_cases import cantilever
 from forms import CircularSection, ReissnerBeam
@@ -32,7 +31,8 @@ from strand.fatigue import (
 )
 from strand.history import read_history
 from strand.mesh import beam_space, polyline_mesh
-from strand.solver import LoadStepper, NewtonSolver, NodalLoad
+from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
+from strand_cases import SEVEN_WIRE
 
 # -- a crossing sheared to and fro (demos/demo_crossed_beams.py) ---------------------------------
 R, L, N_CELLS = 1.5e-3, 0.04, 40
@@ -61,7 +61,7 @@ def sheared_crossing(path):
     bcs += [fem.dirichletbc(0.0, 6 * a + c, V.sub(c)) for c in range(1, 6)]
     bcs += [fem.dirichletbc(0.0, 6 * b[[0, -1]] + c, V.sub(c)) for c in (0, 1, 3, 4, 5)]
     press = NodalLoad(b[[0, -1]], [[0.0, 0.0, -P / 2, 0.0, 0.0, 0.0]] * 2)
-    solver = NewtonSolver(ReissnerBeam(w, section).residual(), w, bcs, terms=[contact, press])
+    solver = NonlinearProblem(ReissnerBeam(w, section).residual(), w, bcs, terms=[contact, press])
     LoadStepper(solver, 0.25, 1e-3).ramp(lambda f: setattr(press, "factor", f), 0.0, 1.0)
     rows = []
 

@@ -41,7 +41,8 @@ def resolve_normal(normal: str, friction: bool) -> str:
 
 
 class ContactGroup(PairGroup):
-    """Small-sliding pairs of one kind sharing a stencil layout; a ``PairTerms`` for ``NewtonSolver``.
+    """Small-sliding pairs of one kind sharing a stencil layout; a ``PairTerms`` for
+    ``NonlinearProblem``.
 
     Args:
         stencils: (P, k) local dof blocks, ordered as ``stencil_nodes(normal, line)``.

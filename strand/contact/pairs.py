@@ -17,12 +17,12 @@ neighbours along its beam.
 
 Build pairs from nodes (``node_pairs``; ``strand.contact.nodes.locate_nodes`` turns points into
 nodes) or let ``candidate_pairs`` find them between two beams; then ``contact_terms`` makes the
-small-sliding contact element (a ``PairTerms`` for ``strand.solver.NewtonSolver``) with the laws of
-``strand.contact.laws`` (``strand.contact.windows.sliding_terms`` the large-sliding one):
+small-sliding contact element (a ``PairTerms`` for ``strand.solver.NonlinearProblem``) with the
+laws of ``strand.contact.laws`` (``strand.contact.windows.sliding_terms`` the large-sliding one):
 
 >>> pairs = candidate_pairs(V, lower, upper, 1e-3, 1e-3, reach=1e-4)      # doctest: +SKIP
 >>> contact = contact_terms(pairs, PenaltyLaw(1e7), ElasticSlip(0.3, 1e-6))  # doctest: +SKIP
->>> NewtonSolver(beam.residual(), w, bcs, terms=[contact]).solve()          # doctest: +SKIP
+>>> NonlinearProblem(beam.residual(), w, bcs, terms=[contact]).solve()      # doctest: +SKIP
 
 Nodes are local dof blocks of the beam space V (dolfinx's blocked P1 space of (u, θ)): what
 ``fem.locate_dofs_geometrical(V, marker)`` and ``locate_dofs_topological(V, 0, vertices)`` return.
@@ -298,7 +298,7 @@ def contact_terms(
     friction_law: FrictionLaw | None = None,
     normal: str = "director",
 ) -> ContactGroup:
-    """The contact element on ``pairs``: a ``PairTerms`` to give ``NewtonSolver(terms=[...])``.
+    """The contact element on ``pairs``: a ``PairTerms`` to give ``NonlinearProblem(terms=[...])``.
 
     Args:
         normal_law: e.g. ``PenaltyLaw(k)`` (N/m, per pair or one for all) or ``hertz_laws``'s.

@@ -53,7 +53,7 @@ class SlidingWindowError(RuntimeError):
 
 
 class SlidingGroup(PairGroup):
-    """Large-sliding pairs of one kind; a ``PairTerms`` for ``NewtonSolver``.
+    """Large-sliding pairs of one kind; a ``PairTerms`` for ``NonlinearProblem``.
 
     Args:
         stencils: (P, na + nb) local dof blocks: the window of wire a (na nodes, in order along

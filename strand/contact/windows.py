@@ -8,7 +8,7 @@ own window (a point against beam a). Pairs whose windows have the same sizes sha
 
 >>> pairs = candidate_pairs(V, lower, upper, r, r, reach=1e-4)                # doctest: +SKIP
 >>> groups = sliding_terms(V, pairs, [lower, upper], 5e-3, PenaltyLaw(1e7))  # doctest: +SKIP
->>> NewtonSolver(beam.residual(), w, bcs, terms=groups).solve()              # doctest: +SKIP
+>>> NonlinearProblem(beam.residual(), w, bcs, terms=groups).solve()          # doctest: +SKIP
 
 Chains are nodes in order along each beam (``locate_nodes`` of its points in order); the
 Hermite centrelines take the nodes' initial unit tangents, by default the chords between each
@@ -218,8 +218,8 @@ def sliding_terms(
     friction_law: FrictionLaw | None = None,
     tangents: npt.ArrayLike | None = None,
 ) -> list[SlidingGroup]:
-    """Large-sliding contact on ``pairs``: the ``PairTerms`` to give ``NewtonSolver(terms=...)``,
-    one ``SlidingGroup`` per window size.
+    """Large-sliding contact on ``pairs``: the ``PairTerms`` to give
+    ``NonlinearProblem(terms=...)``, one ``SlidingGroup`` per window size.
 
     Args:
         V: the beam space (blocked P1 of (u, θ)) whose dof blocks the pairs' nodes are.

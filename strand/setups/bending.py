@@ -250,7 +250,7 @@ class UniformBendingTest(TestSetup):
     def end_reactions(self, residual: Array) -> tuple[float, float]:
         """Reaction couples (N m, about b; positive when they bend the +d fibre into tension) at
         z = 0 and z = L, from the unconstrained residual in the geometry's point order
-        (``NewtonSolver.unconstrained_residual`` through ``StrandModel.gather_nodes``).
+        (``NonlinearProblem.unconstrained_residual`` through ``StrandModel.gather_nodes``).
         Each end section is a rigid body: M = Σ_j (x_j − x_core) × r_u,j + r_θ,j over its wire
         ends, where at z = L the forces r_u are those of the wires alone (the links' share, which
         holds the free end's translations, is taken out)."""

@@ -23,7 +23,7 @@ tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and it
 
 from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
 from .interrupt import Interrupt
-from .problem import NewtonSolver, NonlinearProblem
+from .problem import NonlinearProblem
 from .stepping import LoadStepFailure, LoadStepper, RampState, RunInterrupted, StepRecord
 from .terms import NodalLoad, PairTerms
 
@@ -34,7 +34,6 @@ __all__ = [
     "NewtonOptions",
     "NewtonResult",
     "NewtonConvergence",
-    "NewtonSolver",
     "LoadStepper",
     "StepRecord",
     "RampState",

@@ -26,7 +26,7 @@ from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
 from .interrupt import Interrupt
 from .terms import PairAssembler, PairTerms, create_extended_matrix
 
-__all__ = ["NonlinearProblem", "NewtonSolver"]
+__all__ = ["NonlinearProblem"]
 
 
 class NonlinearProblem(fem_petsc.NonlinearProblem):
@@ -255,35 +255,3 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._remove_options()
         if hasattr(self, "_snes"):
             super().__del__()
-
-
-class NewtonSolver(NonlinearProblem):
-    """``NonlinearProblem`` with the spellings that demos, tests and benchmarks still use:
-    ``NewtonSolver(F, w, bcs, terms=..., prefix=...)``, and ``snes`` and ``prefix`` for
-    ``solver`` and the options prefix."""
-
-    def __init__(
-        self,
-        F: ufl.Form,
-        w: fem.Function,
-        bcs: Sequence[fem.DirichletBC] = (),
-        terms: Sequence[PairTerms] = (),
-        J: ufl.Form | None = None,
-        options: NewtonOptions | None = None,
-        prefix: str | None = None,
-        monitor: Callable[[int, float], None] | None = None,
-    ):
-        super().__init__(
-            F, w, bcs, terms=terms, J=J, options=options, petsc_options_prefix=prefix,
-            monitor=monitor,
-        )  # fmt: skip
-
-    @property
-    def snes(self) -> PETSc.SNES:
-        """The SNES (``solver``)."""
-        return self.solver
-
-    @property
-    def prefix(self) -> str:
-        """The options prefix (``petsc_options_prefix``)."""
-        return self._petsc_options_prefix

@@ -137,46 +137,6 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
         )
 
 
-@pytest.mark.slow
-def test_bending_softens_from_stick_towards_slip_within_the_stiffness_bounds(tmp_path):
-    """0.4 m of Cardinal with μ = 0.05 at 40 kN, saddle load to 1.5 kN: the midspan secant
-    stiffness M/κ lies between EI_min and EI_max and falls as the layers slip; unloading starts
-    stiffer (stick again). (With the real μ = 0.3–0.5 a 0.4 m span does not slip at 3 kN: M/κ
-    stays at 425–450 N m² with the seed penalty, so a low μ brings slip within reach of a short
-    test.)"""
-    import tomllib
-    from importlib import resources
-
-    from strand.case import case_from_dict
-    from strand.run import run_case
-
-    cable = tomllib.loads((resources.files("strand.data") / "cardinal.toml").read_text())
-    for table in (cable["core"], *cable["layer"]):
-        table["friction"] = 0.05
-    case = case_from_dict(
-        {
-            "cable": cable,
-            "mesh": {"length": 0.4},
-            "load": {"lateral": 1500.0, "cycle": [1.0, 0.5]},
-            "output": {"fields": False, "plots": False},
-        }
-    )
-    out = tmp_path / "run"
-    result = run_case(case, out, stream=open(tmp_path / "log.txt", "w"))
-    assert not result.failure
-    mk = np.loadtxt(out / "moment_curvature.csv", delimiter=",", skiprows=1)
-    P, kappa, M = mk[:, 1], mk[:, 2], mk[:, 3]
-    ei_min, ei_max = bending_stiffness_bounds(case.cable)
-    loading = np.flatnonzero(np.diff(np.r_[0.0, P]) > 0)
-    secant = M[loading] / kappa[loading]
-    assert np.all((secant > ei_min) & (secant < ei_max)), secant
-    assert np.all(np.diff(secant) < 0), secant  # softening as slip spreads
-    peak = loading[-1]
-    unloading = (M[peak] - M[peak + 1]) / (kappa[peak] - kappa[peak + 1])
-    last_loading = (M[peak] - M[peak - 1]) / (kappa[peak] - kappa[peak - 1])
-    assert unloading > 1.5 * last_loading  # Masing: reversal sticks again
-
-
 def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
     """`strand compare`: both contact models run the same case into their own folders; on a short
     1+6 strand (sliding of micrometres) their deflections agree within 0.5 % and their wire axial

@@ -50,7 +50,7 @@ def bend(cable: Cable, length: float, tension: float, same_layer: str):
         setup=partial(UniformBendingTest, zone=length / 3),
     )  # fmt: skip
     setup = problem.setup
-    pull = LoadStepper(problem.solver, tension, tension / 64)
+    pull = LoadStepper(problem.solver, 1e3, 1e3 / 64)  # as a run's [steps] tension and cuts
     pull.ramp(partial(setup.set, "tension"), 0.0, tension)
     bends = LoadStepper(problem.solver, KAPPAS[0], KAPPAS[0] / 64, extrapolate=True)
     for kappa in KAPPAS:

@@ -12,7 +12,7 @@ run: setup
 	$(PY) -m strand run $(CASE) --overwrite
 
 test: lint
-	$(PY) -m pytest
+	$(PY) -m pytest -n auto --dist worksteal
 
 lint: setup
 	.venv/bin/ruff check .

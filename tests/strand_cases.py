@@ -92,6 +92,22 @@ def fd_tangent(group, w: np.ndarray, step: float = 1e-9) -> np.ndarray:
     return K
 
 
+def check_state_and_tangent(group, w: np.ndarray, state: str) -> tuple[np.ndarray, float]:
+    """Evaluate a pair group at ``w`` and check that every pair is in ``state`` ("open",
+    "stick" or "slip"); returns its tangent's central differences (``fd_tangent``) and the
+    tangent's scale, for the caller to compare with its own layout."""
+    _, K = group.evaluate(w, True)
+    s = group.state
+    if state == "open":
+        assert np.all(s.force == 0) and np.all(s.traction == 0)
+    else:
+        assert np.all(s.force > 0)
+        assert np.all(s.slipping == (state == "slip"))
+    K_fd = fd_tangent(group, w)
+    group.evaluate(w, True)
+    return K_fd, max(np.abs(K).max(), 1.0)
+
+
 #: some of the files a saddle run with fields and plots writes at the top of its folder
 RUN_FILES = ("fields.xdmf", "fields.h5", "load_deflection.png", "steps.csv", "summary.txt")
 

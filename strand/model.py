@@ -92,8 +92,16 @@ class StrandModel:
             self.contact = sliding_groups(geometry, self.i2b, cs, owned)
         else:
             self.contact = contact_groups(geometry, self.i2b, cs, owned)
-        #: contact between neighbouring wires of a layer (``[contact] same_layer``)
-        self.same_layer = same_layer_groups(geometry, self.i2b, cs, owned)
+        #: contact between neighbouring wires of a layer (``[contact] same_layer``): the pairs
+        #: in the geometry's order (None when off) and the group this rank evaluates
+        self.same_layer_pairs = (
+            None if cs.same_layer == "off" else same_layer_pairs(geometry, cs.same_layer)
+        )
+        self.same_layer = (
+            []
+            if self.same_layer_pairs is None
+            else same_layer_groups(geometry, self.same_layer_pairs, self.i2b, cs, owned)
+        )
         n_pairs = comm.allreduce(sum(len(g.index) for g in self.contact), op=MPI.SUM)
         if n_pairs != len(geometry.pairs):
             raise DistributionError(
@@ -185,11 +193,10 @@ class StrandModel:
     def same_layer_history(self) -> dict[str, Array]:
         """The same-layer pairs' history arrays in ``same_layer_pairs`` order, every rank
         (empty without same-layer contact)."""
-        if self.contact_settings.same_layer == "off":
+        if self.same_layer_pairs is None:
             return {}
-        n = len(same_layer_pairs(self.geometry, self.contact_settings.same_layer))
         arrays = [g.history_arrays() for g in self.same_layer]
-        return self.gather_pairs(arrays, groups=self.same_layer, n_pairs=n)
+        return self.gather_pairs(arrays, groups=self.same_layer, n_pairs=len(self.same_layer_pairs))
 
     def pair_results(self) -> PairResults:
         """Every geometry pair's gap, forces, slip state and friction history at the current

@@ -155,17 +155,15 @@ def same_layer_pairs(geometry: StrandGeometry, gaps: str = "nominal") -> SameLay
 
 def same_layer_groups(
     geometry: StrandGeometry,
+    pairs: SameLayerPairs,
     input_to_block: npt.NDArray[np.int32],
     settings,
     n_owned: int | None = None,
 ) -> list[SegmentGroup]:
-    """The same-layer pairs of ``settings.same_layer`` as one ``SegmentGroup`` (none if "off"):
-    Hertz line contact and Mindlin friction ("hertz" compliance), or the line penalty
-    ``k_line`` and elastic slip ("penalty"). With ``n_owned`` (distributed), the pairs whose
-    node a this rank owns."""
-    if settings.same_layer == "off":
-        return []
-    pairs = same_layer_pairs(geometry, settings.same_layer)
+    """``pairs`` (``same_layer_pairs``) as one ``SegmentGroup`` (none if there are none): Hertz
+    line contact and Mindlin friction ("hertz" compliance), or the line penalty ``k_line`` and
+    elastic slip ("penalty"). With ``n_owned`` (distributed), the pairs whose node a this rank
+    owns."""
     rows = np.arange(len(pairs))
     if n_owned is not None:
         rows = owned_rows(input_to_block[pairs.stencils], n_owned, "same-layer pairs")

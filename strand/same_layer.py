@@ -31,6 +31,7 @@ import numpy.typing as npt
 from .cable import Layer
 from .contact.hertz import compliance, mindlin_ratio
 from .contact.laws import ElasticSlip, HertzLineLaw, Mindlin, PenaltyLaw, SmoothOnset
+from .contact.pairs import closest_on_segments
 from .contact.segment import SegmentGroup
 from .geometry import StrandGeometry
 from .partition import owned_rows
@@ -109,19 +110,14 @@ def _wire_pairs(geometry: StrandGeometry, w: int, w_next: int):
     g = geometry
     pa = np.arange(g.wire_offsets[w], g.wire_offsets[w + 1])
     pb = np.arange(g.wire_offsets[w_next], g.wire_offsets[w_next + 1])
-    X, s0 = g.points[pa], g.points[pb[:-1]]
-    d = g.points[pb[1:]] - s0
-    xi = np.einsum("psi,si->ps", X[:, None, :] - s0[None], d) / np.einsum("si,si->s", d, d)
-    xi = np.clip(xi, 0.0, 1.0)
-    distance = np.linalg.norm(s0[None] + xi[..., None] * d[None] - X[:, None], axis=2)
+    X, s0, s1 = g.points[pa], g.points[pb[:-1]], g.points[pb[1:]]
+    distance, xi = closest_on_segments(X, s0, s1)
     j = np.argmin(distance, axis=1)
-    rows = np.arange(len(pa))
-    t = xi[rows, j]
-    inside = ((t > 0) | (j > 0)) & ((t < 1) | (j < len(d) - 1))  # faces the neighbour's span
-    lengths = np.linalg.norm(np.diff(g.points[pa], axis=0), axis=1)
+    t = xi[np.arange(len(pa)), j]
+    keep = ((t > 0) | (j > 0)) & ((t < 1) | (j < len(s0) - 1))  # faces the neighbour's span
+    lengths = np.linalg.norm(np.diff(X, axis=0), axis=1)
     tributary = 0.5 * (np.r_[0.0, lengths] + np.r_[lengths, 0.0])
-    facing = s0[j] + t[:, None] * d[j] - X
-    keep = inside
+    facing = s0[j] + t[:, None] * (s1[j] - s0[j]) - X
     return pa[keep], pb[j][keep], pb[j + 1][keep], t[keep], facing[keep], tributary[keep]
 
 
@@ -136,8 +132,8 @@ def same_layer_pairs(geometry: StrandGeometry, gaps: str = "nominal") -> SameLay
         wires = np.flatnonzero(g.wire_layer == i)
         if len(wires) < 2:
             continue
-        nominal = max(helix_clearance(layer) - layer.wire.diameter, 0.0)
-        spare = len(wires) * (helix_clearance(layer) - layer.wire.diameter)
+        layer_gap = helix_clearance(layer) - layer.wire.diameter
+        nominal, spare = max(layer_gap, 0.0), len(wires) * layer_gap
         for k, w in enumerate(wires):
             a, b0, b1, xi, facing, tributary = _wire_pairs(g, w, wires[(k + 1) % len(wires)])
             if gaps == "nominal":

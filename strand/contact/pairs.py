@@ -200,7 +200,7 @@ def node_pairs(
     return NodePairs(table, x, bool(line), r_a, r_b, normal, gap, trib, np.arange(P))
 
 
-def _closest_on_segments(p: Array, s0: Array, s1: Array) -> tuple[Array, Array]:
+def closest_on_segments(p: Array, s0: Array, s1: Array) -> tuple[Array, Array]:
     """For points p (N, 3) and segments [s0, s1] (S, 3): distances (N, S) and parameters."""
     u = s1 - s0
     uu = np.einsum("si,si->s", u, u)
@@ -250,7 +250,7 @@ def candidate_pairs(
     gap = np.empty(len(nb))
     a = np.empty(len(nb), dtype=np.int32)
     for rows in _chunks(len(nb), len(segments)):
-        dist, t = _closest_on_segments(x[nb[rows]], x[segments[:, 0]], x[segments[:, 1]])
+        dist, t = closest_on_segments(x[nb[rows]], x[segments[:, 0]], x[segments[:, 1]])
         best = dist.argmin(axis=1)
         k = np.arange(len(best))
         gap[rows] = dist[k, best] - radius_a - radius_b

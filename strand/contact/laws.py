@@ -24,7 +24,7 @@ else scaled back to μp t_tr/‖t_tr‖ (slip). The laws differ in K_T only:
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -203,9 +203,15 @@ class SmoothOnset(NormalLaw):
     law: NormalLaw
     width: float = 1e-8  # m
 
+    #: k₀ per number of pairs (the law is immutable: computed once, not at every evaluation)
+    _k0_cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
     def _k0(self, like: Array) -> Array:
         """k₀ per pair: the law's tangent just closed."""
-        return -self.law.force(np.zeros_like(like, dtype=float))[1]
+        shape = np.shape(like)
+        if shape not in self._k0_cache:
+            self._k0_cache[shape] = -self.law.force(np.zeros(shape))[1]
+        return self._k0_cache[shape]
 
     def force(self, g: Array) -> tuple[Array, Array]:
         d = -np.asarray(g, float)

@@ -41,12 +41,12 @@ def strands() -> dict[str, tuple[Cable, float, float]]:
     return {"19": (Cable("1+6+12", c.layers[:3]), 0.3, 10e3), "cardinal": (c, 0.6, 40e3)}
 
 
-def bend(cable: Cable, length: float, tension: float, same_layer: str):
+def bend(cable: Cable, length: float, tension: float, same_layer: str, slip: str):
     """Tension, then the curvatures of ``KAPPAS`` in turn; yields (zone record, problem, Newton
     iterations so far)."""
     geometry = build_geometry(cable, length, 4e-3)
     problem = StrandProblem(
-        geometry, ContactSettings(same_layer=same_layer), NewtonOptions(atol=1e-3, max_it=15),
+        geometry, ContactSettings(same_layer=same_layer, slip=slip), NewtonOptions(atol=1e-3, max_it=15),
         setup=partial(UniformBendingTest, zone=length / 3),
     )  # fmt: skip
     setup = problem.setup
@@ -61,15 +61,16 @@ def bend(cable: Cable, length: float, tension: float, same_layer: str):
         yield zone, problem, its
 
 
-def row(name: str, same_layer: str) -> str:
-    cable, length, tension = strands()[name]
+def row(name: str, same_layer: str, slip: str, length: float | None) -> str:
+    cable, default_length, tension = strands()[name]
+    length = length or default_length
     _, ei_max = bending_stiffness_bounds(cable)
     law = StickSlipLaw(cable, tension)
     estimate = stick_bending_estimate(cable).ratio
     cells, slope, closed, effort = [], "", "", 0
     t0 = time.perf_counter()
     try:
-        for zone, problem, its in bend(cable, length, tension, same_layer):
+        for zone, problem, its in bend(cable, length, tension, same_layer, slip):
             k, M, effort = zone.curvature, zone.moment_zone_middle, its
             if not cells:
                 slope = f"{M / k / ei_max:.3f}"
@@ -82,7 +83,7 @@ def row(name: str, same_layer: str) -> str:
         outcome = f" stopped: {str(e)[:90]}"
     cells += ["–"] * (len(KAPPAS) - len(cells))
     seconds = time.perf_counter() - t0
-    return (f"| {cable.name}, {length:g} m, {tension / 1e3:g} kN | {same_layer} | {estimate:.3f} | "
+    return (f"| {cable.name}, {length:g} m, {tension / 1e3:g} kN | {slip} | {same_layer} | {estimate:.3f} | "
             f"{slope or '–'} | " + " | ".join(cells) + f" | {closed} | {seconds:.0f} s, {effort} its"
             f"{outcome} |")  # fmt: skip
 
@@ -101,15 +102,18 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("strand", nargs="*", default=["19", "cardinal"], choices=list(strands()))
     parser.add_argument("--same-layer", nargs="*", default=["off", "nominal", "packed"])
+    parser.add_argument("--slip", nargs="*", default=["surface", "centreline"])
+    parser.add_argument("--length", type=float, help="span, m (default: the strand's)")
     args = parser.parse_args()
     print(stamp())
-    head = ["strand", "same layer", "estimate", "M/κ / EI_max",
+    head = ["strand", "slip", "same layer", "estimate", "M/κ / EI_max",
             *(f"M at {k:g} (law)" for k in KAPPAS), "closed", "cost"]  # fmt: skip
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for name in args.strand:
-        for same_layer in args.same_layer:
-            print(row(name, same_layer), flush=True)
+        for slip in args.slip:
+            for same_layer in args.same_layer:
+                print(row(name, same_layer, slip, args.length), flush=True)
 
 
 if __name__ == "__main__":

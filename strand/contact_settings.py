@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 from .cable import CableError
-from .contact.element import resolve_normal
+from .contact.element import SLIP, resolve_normal
 from .contact.errors import ContactError
 from .same_layer import SAME_LAYER
 
@@ -50,6 +50,10 @@ class ContactSettings:
         same_layer: contact between neighbouring wires of one layer (``strand.same_layer``):
             "off", "nominal" (each layer's gaps from its helices, clipped at touching) or
             "packed" (neighbours touching, the spare circumference in one gap); small sliding.
+        slip: the friction's slip measure between layers (``strand.contact.element``):
+            "surface" (the relative motion of the two surface points in contact: a wire rolls on
+            its neighbour without slip) or "centreline" (the seed paper's: the motion of the
+            centre lines' closest points, blind to a wire's spin: rolling is slip); small sliding.
     """
 
     normal: str = "auto"
@@ -61,6 +65,7 @@ class ContactSettings:
     model: str = "small"
     reach: float = 1e-3
     same_layer: str = "off"
+    slip: str = "surface"
 
     def __post_init__(self):
         try:
@@ -82,6 +87,13 @@ class ContactSettings:
             raise CableError(
                 f'contact same_layer = "{self.same_layer}" needs model = "small" (same-layer '
                 "pairs are not built for large sliding yet)"
+            )
+        if self.slip not in SLIP:
+            raise CableError(f"contact slip {self.slip!r} is unknown; choose {' or '.join(SLIP)}")
+        if self.slip != "surface" and self.model != "small":
+            raise CableError(
+                f'contact slip = "{self.slip}" needs model = "small" (large sliding measures the '
+                "surface points' slip)"
             )
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)

@@ -99,7 +99,7 @@ def contact_groups(
         if len(sel):
             pairs = strand_pairs(geometry, input_to_block, sel)
             laws = pair_laws(geometry, sel, settings, pairs.tangents)
-            groups.append(contact_terms(pairs, *laws, normal=settings.normal))
+            groups.append(contact_terms(pairs, *laws, normal=settings.normal, slip=settings.slip))
     return groups
 
 

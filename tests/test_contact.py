@@ -17,6 +17,7 @@ from strand.contact.kinematics import (
     gap_derivatives,
     rotation_matrix,
     stencil_nodes,
+    tangent_map,
 )
 from strand.contact.laws import (
     ElasticSlip,
@@ -60,6 +61,7 @@ def crossed_pair(
     n_pairs: int = 4,
     h: float = 3e-3,
     compliance: str = "penalty",
+    slip: str = "surface",
 ):
     """Pairs of two straight wires crossing at ``angle`` (a along x, b above it), as a group.
 
@@ -81,7 +83,7 @@ def crossed_pair(
     t0 = np.repeat(np.stack([ta, tb])[None], n_pairs, 0)
     full = np.full(n_pairs, 1.0)
     laws = pair_laws(compliance, line, angle, n_pairs)
-    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0)
+    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0, slip=slip)
 
 
 @pytest.mark.parametrize(("normal", "line"), KINDS)
@@ -113,14 +115,16 @@ def test_gap_hessian_matches_finite_differences(normal, line):
 
 
 @pytest.mark.parametrize(
-    ("normal", "line", "compliance"),
-    [(n, line, "penalty") for n, line in KINDS]
-    + [("director", line, "hertz") for line in (False, True)],
-)
-def test_pair_tangent_matches_finite_differences_open_stick_slip(normal, line, compliance):
+    ("normal", "line", "compliance", "slip"),
+    [(n, line, "penalty", "surface") for n, line in KINDS]
+    + [("director", line, "hertz", "surface") for line in (False, True)]
+    + [(n, line, c, "centreline") for n in ("frozen", "director") for line in (False, True)
+       for c in ("penalty", "hertz")],
+)  # fmt: skip
+def test_pair_tangent_matches_finite_differences_open_stick_slip(normal, line, compliance, slip):
     """Residual derivatives in the three states, after a committed step with random rotations."""
     rng = np.random.default_rng(7)
-    group = crossed_pair(normal, line, np.radians(25), compliance=compliance)
+    group = crossed_pair(normal, line, np.radians(25), compliance=compliance, slip=slip)
     P, k = group.stencils.shape
     w = np.zeros((P * k, 6))
     w[:, 3:] = rng.normal(scale=0.05, size=(P * k, 3))
@@ -315,6 +319,67 @@ def test_small_rigid_rotation_makes_no_slip():
     assert slip < 1e-3 * np.linalg.norm(omega) * (R_A + R_B)
 
 
+def _committed_pairs(line: bool, turned: float):
+    """A surface-slip and a centre-line-slip pair, pressed and committed with their nodes turned
+    by random rotations of up to ``turned`` rad."""
+    groups = [crossed_pair("director", line, np.radians(35), n_pairs=1, slip=s)
+              for s in ("surface", "centreline")]  # fmt: skip
+    k = groups[0].stencils.shape[1]
+    w = np.zeros((k, 6))
+    w[1, 2] = -3e-6
+    w[:, 3:] = np.random.default_rng(5).uniform(-turned, turned, size=(k, 3))
+    for group in groups:
+        group.evaluate(w, True)
+        group.commit()
+    return groups, w
+
+
+def _increment(group, w, omega, du_b=None, spin_b=None):
+    """(Δu_a, Δθ_a, Δu_b, Δθ_b) of a small rigid rotation ω (spatial) of the pair about node a,
+    then b moved by du_b and turned by spin_b (spatial; default none)."""
+    du_b = np.zeros(3) if du_b is None else du_b
+    spin_b = np.zeros(3) if spin_b is None else spin_b
+    x_b = (R_A + R_B) * group.state.normal[0]
+    dq = np.zeros(12)
+    dq[3:6] = np.linalg.solve(tangent_map(w[0, 3:]), omega)
+    dq[9:12] = np.linalg.solve(tangent_map(w[1, 3:]), omega + spin_b)
+    dq[6:9] = np.cross(omega, x_b) + du_b
+    return dq
+
+
+@pytest.mark.parametrize("line", [False, True])
+def test_centreline_slip_is_objective(line):
+    """No centre-line slip for a small rigid rotation of a pair whose nodes are already turned by
+    up to 0.3 rad; a translation in the tangent plane is slip as it is for the surface points."""
+    (surface, centre), w = _committed_pairs(line, 0.3)
+    S = centre.slip_operator()[0]
+    omega = np.array([2e-4, -1e-4, 3e-4])
+    rigid = S @ _increment(centre, w, omega)
+    assert np.linalg.norm(rigid) < 1e-9 * np.linalg.norm(omega) * (R_A + R_B)
+    shift = np.cross(centre.state.normal[0], [0.3, -0.5, 0.8]) * 1e-6  # in the tangent plane
+    dq = _increment(centre, w, np.zeros(3), du_b=shift)
+    assert np.allclose(S @ dq, shift, atol=1e-15)
+    assert np.allclose(surface.slip_operator()[0] @ dq, shift, atol=1e-15)
+
+
+def test_centreline_slip_is_blind_to_spin_and_sees_rolling():
+    """A crossing wire's spin about its own axis: the surface points slip by r_b × spin, the
+    centre lines not at all. Rolling (the spin with b's centre moving so that its surface point
+    stays): no surface slip, a centre-line slip of the centre's motion."""
+    (surface, centre), w = _committed_pairs(False, 0.0)
+    n = centre.state.normal[0]
+    angle = np.radians(35)
+    spin = 1e-3 * np.array([np.cos(angle), np.sin(angle), 0.0])  # about b's axis
+    turned = R_B * np.cross(spin, -n)  # the motion of b's surface point
+    spun = _increment(centre, w, np.zeros(3), spin_b=spin)
+    rolling = _increment(centre, w, np.zeros(3), du_b=-turned, spin_b=spin)
+    S_surface, S_centre = surface.slip_operator()[0], centre.slip_operator()[0]
+    assert np.linalg.norm(S_centre @ spun) < 1e-15
+    assert np.allclose(S_surface @ spun, turned, atol=1e-15)
+    assert np.linalg.norm(S_surface @ rolling) < 1e-15
+    assert np.allclose(S_centre @ rolling, -turned, atol=1e-15)
+
+
 def test_helix_on_core_line_load():
     """Contact line load of a tensioned helix on its core: X = T sin²α / r (docs/theory.md §5.6)."""
     geometry = seven_wire(lay_angle=12.0)
@@ -429,6 +494,10 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(compliance="hertz", g_lim=1e-6)
     with pytest.raises(CableError, match="compliance 'stiff' is unknown"):
         ContactSettings(compliance="stiff")
+    with pytest.raises(CableError, match="slip 'centre' is unknown; choose surface or centreline"):
+        ContactSettings(slip="centre")
+    with pytest.raises(CableError, match='slip = "centreline" needs model = "small"'):
+        ContactSettings(slip="centreline", model="large")
     from strand.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
 
     with pytest.raises(CaseError, match=r"unknown setting\(s\) in \[contact\]: \['kn'\]"):

@@ -2,11 +2,22 @@
 
 Each ``ContactGroup`` holds the pairs of one kind (crossings or line pairs); the shared
 ``PairGroup`` applies the normal and friction laws (``strand.contact.group``). Per pair, the gap is
-one of ``kinematics``'s normals, and the slip since the last converged step is Δg_T = S Δq with
-S = P_n[−I, r_a n×, I, r_b n×] acting on (u_a, θ_a, u_b, θ_b): the relative motion of the two
-surface points, n and the tangent plane frozen at the start of the step. ``resolve_normal``
-names the normal a group uses; ``strand.contact.pairs`` builds groups on any beams
-(``strand.strand_contact`` those of a strand). Units: m, N, rad.
+one of ``kinematics``'s normals, and the slip since the last converged step is Δg_T = S Δq, with
+n and the tangent plane frozen at the start of the step. Two slip measures (``SLIP``):
+
+* "surface": S = P_n[−I, r_a n×, I, r_b n×] on (u_a, θ_a, u_b, θ_b), the relative motion of the
+  two surface points in contact. A wire may roll on its neighbour without slip.
+* "centreline": the motion of the centre lines' closest points, Δg_T = Δξ₁ t₁ − Δξ₂ t₂ (the seed
+  paper's g_T from the closest-point parameters ξ, as in Wriggers & Zavarise 1997): the change of
+  the conditions (x_b − x_a)·t₁ = (x_b − x_a)·t₂ = 0, with x_b − x_a = d n, d = r_a + r_b and the
+  tangents turned by δω = T(θ)δθ, gives (Δu_b − Δu_a)·tᵢ + d δωᵢ·(tᵢ × n) = rᵢ, and Δg_T is the
+  vector of the tangent plane with Δg_T·tᵢ = rᵢ. A rigid motion of the pair gives no slip; a
+  wire's spin (δω·t) does not enter, so rolling is slip. Line pairs have one condition; their
+  slip is that of b's centre against the point of a's cross-section at d n,
+  P_n(Δu_b − Δu_a + d n × δω_a).
+
+``resolve_normal`` names the normal a group uses; ``strand.contact.pairs`` builds groups on any
+beams (``strand.strand_contact`` those of a strand). Units: m, N, rad.
 """
 
 from __future__ import annotations
@@ -16,10 +27,20 @@ import numpy.typing as npt
 
 from .errors import ContactError
 from .group import PairGroup, PairKinematics
-from .kinematics import NORMALS, gap_derivatives, skew, stencil_nodes
+from .kinematics import (
+    NORMALS,
+    gap_derivatives,
+    rotation_matrix,
+    skew,
+    stencil_nodes,
+    tangent_map,
+)
 from .laws import FrictionLaw, NormalLaw
 
-__all__ = ["ContactGroup", "resolve_normal"]
+__all__ = ["SLIP", "ContactGroup", "resolve_normal"]
+
+#: the slip measures: the surface points' relative motion, or the centre lines' closest points'
+SLIP = ("surface", "centreline")
 
 Array = npt.NDArray[np.float64]
 
@@ -54,6 +75,7 @@ class ContactGroup(PairGroup):
         tangent0: (P, 2, 3) initial unit tangents at a and b (``director`` only).
         index: (P,) pair ids, for reporting.
         initial_gap: (P,) gap at t = 0, m (default 0: the pairs touch).
+        slip: the slip measure, one of ``SLIP`` ("centreline" needs ``tangent0``).
     """
 
     def __init__(
@@ -70,7 +92,12 @@ class ContactGroup(PairGroup):
         tangent0=None,
         index=None,
         initial_gap=None,
+        slip: str = "surface",
     ):
+        if slip not in SLIP:
+            raise ContactError(f"contact slip {slip!r} is unknown; choose {' or '.join(SLIP)}")
+        if slip == "centreline" and tangent0 is None:
+            raise ValueError("the centre-line slip needs the pairs' initial tangents")
         super().__init__(stencils, normal_law, friction_law, normal0, index)
         n_pairs, k = self.stencils.shape
         if k != len(stencil_nodes(normal, line)):
@@ -100,6 +127,8 @@ class ContactGroup(PairGroup):
                 raise ValueError("a crossing pair has parallel tangents; use a line pair")
         if normal == "director":
             self.data["t0"] = np.asarray(tangent0, dtype=float)
+        self.slip = slip
+        self._tangent0 = None if tangent0 is None else np.asarray(tangent0, dtype=float)
         # g0: the initial value less the initial gap, so that g = initial_gap at t = 0
         zero = np.zeros_like(X)
         value = gap_derivatives(normal, line, X, zero, self.data).gap
@@ -112,11 +141,25 @@ class ContactGroup(PairGroup):
         """S (P, 3, 12): Δg_T = S Δ(u_a, θ_a, u_b, θ_b), with the normal frozen over the step."""
         if self._S is None:
             n = self._n_old
-            P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
-            N = skew(n)
-            self._S = np.concatenate(
-                [-P_n, self.r_a[:, None, None] * N, P_n, self.r_b[:, None, None] * N], axis=2
-            )
+            if self.slip == "surface":
+                P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
+                N = skew(n)
+                self._S = np.concatenate(
+                    [-P_n, self.r_a[:, None, None] * N, P_n, self.r_b[:, None, None] * N], axis=2
+                )
+            else:
+                theta_a, theta_b = self._q_old[:, 3:6], self._q_old[:, 9:12]
+                t = np.stack(
+                    [
+                        np.einsum("pij,pj->pi", rotation_matrix(theta_a), self._tangent0[:, 0]),
+                        np.einsum("pij,pj->pi", rotation_matrix(theta_b), self._tangent0[:, 1]),
+                    ],
+                    axis=1,
+                )
+                self._S = centreline_slip_operator(
+                    n, t, self.r_a + self.r_b, tangent_map(theta_a), tangent_map(theta_b),
+                    self.line,
+                )  # fmt: skip
         return self._S
 
     def _kinematics(self, W: Array, jacobian: bool) -> PairKinematics:
@@ -140,3 +183,33 @@ class ContactGroup(PairGroup):
     def _commit_kinematics(self, W: Array) -> None:
         self._q_old = W[:, :2].reshape(-1, 12).copy()
         self._S = None
+
+
+def centreline_slip_operator(n, t, d, T_a, T_b, line: bool) -> Array:
+    """The centre-line slip operator S (P, 3, 12) on (u_a, θ_a, u_b, θ_b) (module docstring).
+
+    Args:
+        n: (P, 3) unit normals a → b; t: (P, 2, 3) tangents of a and b at the step's start.
+        d: (P,) distance of the centre lines, m; T_a, T_b: (P, 3, 3) δω = T δθ of a and b.
+        line: line pairs (one closest-point condition) rather than crossings.
+    """
+    n_pairs = len(n)
+    P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
+    if line:
+        lever = d[:, None, None] * skew(n) @ T_a  # d n × δω_a
+        return np.concatenate([-P_n, lever, P_n, np.zeros((n_pairs, 3, 3))], axis=2)
+    e = np.einsum("pij,pkj->pki", P_n, t)  # the tangents in the tangent plane
+    e /= np.linalg.norm(e, axis=2)[..., None]
+    # rows r_i = (Δu_b − Δu_a)·e_i + d (e_i × n)·T δθ_i
+    R = np.zeros((n_pairs, 2, 12))
+    R[:, :, 0:3], R[:, :, 6:9] = -e, e
+    lever = d[:, None, None] * np.cross(e, n[:, None, :])  # (P, 2, 3)
+    R[:, 0, 3:6] = np.einsum("pi,pij->pj", lever[:, 0], T_a)
+    R[:, 1, 9:12] = np.einsum("pi,pij->pj", lever[:, 1], T_b)
+    # Δg_T = x e_1 + y e_2 with Δg_T·e_i = r_i: (x, y) = G⁻¹ r, G the Gram matrix of e_1, e_2
+    c = np.einsum("pi,pi->p", e[:, 0], e[:, 1])
+    if np.any(np.abs(c) > 1 - 1e-8):
+        raise ContactError("a crossing pair has parallel tangents; use a line pair")
+    G_inv = np.stack([np.stack([np.ones_like(c), -c], -1), np.stack([-c, np.ones_like(c)], -1)], -2)
+    G_inv /= (1 - c**2)[:, None, None]
+    return np.einsum("pki,pkl,plm->pim", e, G_inv, R)

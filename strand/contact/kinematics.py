@@ -41,6 +41,7 @@ __all__ = [
     "gap_derivatives",
     "rotation_matrix",
     "skew",
+    "tangent_map",
 ]
 
 Array = npt.NDArray[np.float64]
@@ -105,6 +106,14 @@ def rotation_matrix(theta):
     a, b, _ = _rotation_coefficients(theta)
     W = skew(theta)
     return np.eye(3) + a[..., None, None] * W + b[..., None, None] * (W @ W)
+
+
+def tangent_map(theta):
+    """T(θ) = I + b θ× + c θ×² (..., 3, 3): the spatial rotation increment δω = T(θ) δθ of an
+    increment δθ of the rotation vector θ."""
+    _, b, c = _rotation_coefficients(theta)
+    W = skew(theta)
+    return np.eye(3) + b[..., None, None] * W + c[..., None, None] * (W @ W)
 
 
 def _cross(u, v):

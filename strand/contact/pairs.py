@@ -297,6 +297,7 @@ def contact_terms(
     normal_law: NormalLaw,
     friction_law: FrictionLaw | None = None,
     normal: str = "director",
+    slip: str = "surface",
 ) -> ContactGroup:
     """The contact element on ``pairs``: a ``PairTerms`` to give ``NonlinearProblem(terms=[...])``.
 
@@ -305,6 +306,8 @@ def contact_terms(
         friction_law: e.g. ``ElasticSlip(mu, g_lim)``; None: frictionless.
         normal: "director" (n from the nodes' rotated tangents, the default), "neighbour" (from
             the chords of the neighbouring nodes) or "frozen" (the initial normal).
+        slip: "surface" (the surface points' relative motion) or "centreline" (the centre lines'
+            closest points'; ``strand.contact.element``).
     """
     stencils, positions = pairs.stencil(normal)
     return ContactGroup(
@@ -320,6 +323,7 @@ def contact_terms(
         pairs.tangents,
         index=pairs.index,
         initial_gap=pairs.initial_gap,
+        slip=slip,
     )
 
 

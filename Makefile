@@ -1,8 +1,9 @@
 # The two commands a new user needs; both set the environment up first (idempotent).
-#   make run [CASE=my_case.toml]   the main job (replaces that case's earlier results)
+#   make run [CASE=my_case.toml]   the main job (default: the built-in Cardinal case; replaces
+#                                  that case's earlier results)
 #   make test                      lint (ruff), then the whole test suite
 PY := .venv/bin/python
-CASE ?=
+CASE ?= cardinal
 
 .PHONY: setup run test lint
 setup:

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .case import Case
+from .case import Case, check_loads_given
+from .case_toml import case_toml
 from .checkpoint import CheckpointError, restore
 from .folder import RUN_MARKER, prepare_results_folder
 from .geometry import build_geometry
@@ -29,8 +30,8 @@ __all__ = [
 
 
 def settings_text(case: Case) -> str:
-    """The settings of ``case``, a ``key = value`` line each under its section's name (the
-    run's ``settings.txt``)."""
+    """The settings of ``case``, a ``key = value`` line each under its section's name (a
+    sweep's ``sweep.txt`` until its table replaces it; a run writes ``case.toml``)."""
     lines = [f"case: {case.source}", f"cable: {case.cable.name}"]
     for name in ("mesh", "contact", "load", "steps", "output"):
         lines.append(f"[{name}]")
@@ -42,18 +43,24 @@ def settings_text(case: Case) -> str:
 
 
 def results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
-    """The run's folder, prepared on rank 0 (``folder.prepare_results_folder``) with the run's
-    settings written first; every rank gets the verdict."""
+    """The run's folder, prepared on rank 0 (``folder.prepare_results_folder``) with the whole
+    case written first (``case.toml``, ``strand.case_toml``); every rank gets the verdict. A
+    case that leaves Cardinal's loads on a cable of its own is refused first
+    (``check_loads_given``)."""
+    check_loads_given(case)
 
     def prepare() -> Path:
         path = prepare_results_folder(folder, overwrite)
-        text = settings_text(case)
-        if restart is not None:
-            text += f"restart = {str(restart)!r}\n"
+        text = case_toml(case, str(folder), None if restart is None else str(restart))
         (path / RUN_MARKER).write_text(text)
         return path
 
     return on_root(prepare)
+
+
+#: the stall test of strand's runs starts at the 4th iteration (``[steps] stall``; the choice
+#: behind it: ``NewtonOptions.stall_after``, docs/theory.md §6)
+STALL_AFTER = 4
 
 
 def newton_options(case: Case) -> NewtonOptions:
@@ -64,7 +71,7 @@ def newton_options(case: Case) -> NewtonOptions:
     diameter = max(layer.wire.diameter for layer in case.cable.layers)
     return NewtonOptions(
         atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
-        stall_after=NewtonOptions.stall_after if s.stall else 0, linesearch=s.line_search,
+        stall_after=STALL_AFTER if s.stall else 0, linesearch=s.line_search,
     )  # fmt: skip
 
 

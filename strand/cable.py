@@ -1,6 +1,8 @@
 """Cable descriptions: a core wire and layers of helical wires, as a cable engineer gives them.
 
-SI units: diameters in m, moduli in Pa, lay angles in degrees (measured from the strand axis).
+SI units: diameters in m, moduli and stresses in Pa, lay angles in degrees (measured from the strand
+axis). A wire may give its ``yield_stress`` (optional): a run then warns when a wire's axial stress
+exceeds it.
 A description comes from a TOML file (see ``strand/data/cardinal.toml``) or a dict; every field is
 checked and errors name the field (``CableError``).
 """
@@ -27,6 +29,7 @@ class Wire:
     diameter: float  # m
     E: float  # Pa
     nu: float  # -
+    yield_stress: float | None = None  # Pa; a run warns when a wire's axial stress exceeds it
 
     @property
     def area(self) -> float:
@@ -87,8 +90,8 @@ class Cable:
         return sum(lay.wires for lay in self.layers)
 
 
-_CORE_KEYS = {"diameter", "E", "nu", "friction"}
-_LAYER_KEYS = {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction"}
+_CORE_KEYS = {"diameter", "E", "nu", "friction", "yield_stress"}
+_LAYER_KEYS = {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
 
 
 def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, closed_low=False):
@@ -109,6 +112,7 @@ def _wire(d: dict, where: str) -> Wire:
         diameter=_number(d, "diameter", where, 0.0, 1.0),
         E=_number(d, "E", where, 0.0),
         nu=_number(d, "nu", where, -1.0, 0.5),
+        yield_stress=_number(d, "yield_stress", where, 0.0) if "yield_stress" in d else None,
     )
 
 

@@ -82,7 +82,7 @@ from __future__ import annotations
 import math
 import tomllib
 from collections.abc import Callable
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -102,6 +102,7 @@ __all__ = [
     "CaseError",
     "load_case",
     "case_from_dict",
+    "check_loads_given",
     "parse_settings",
 ]
 
@@ -122,6 +123,9 @@ class Case:
     output: OutputSettings = field(default_factory=OutputSettings)
     fatigue: FatigueSettings = field(default_factory=FatigueSettings)
     source: str = "built-in default"
+    #: the ``[load]`` settings a run needs that the case leaves at their defaults (Cardinal's)
+    #: although its cable is not a built-in one (``check_loads_given``)
+    unset_loads: tuple[str, ...] = ()
 
 
 SECTIONS = {
@@ -249,7 +253,13 @@ def _cable(spec, base: Path | None, source: str) -> Cable:
         if isinstance(spec, str):
             if spec.lower() in BUILTIN_CABLES:
                 return BUILTIN_CABLES[spec.lower()]()
-            return load_cable((base or Path.cwd()) / spec)
+            path = (base or Path.cwd()) / spec
+            if not path.exists():
+                raise CaseError(
+                    f"{source}: cable = {spec!r} is neither a built-in cable nor a file ({path}); "
+                    f"built-in cables: {', '.join(BUILTIN_CABLES)}"
+                )
+            return load_cable(path)
         if isinstance(spec, dict):
             return cable_from_dict(spec)
         raise CaseError(f"{source}: 'cable' must be a name, a file or a table")
@@ -322,7 +332,35 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
     case = Case(cable, **sections, source=source)
     _in(source, _check_steps_and_load, case)
     _in(source, _check_fatigue, case.fatigue, cable)
-    return case
+    return replace(case, unset_loads=_unset_loads(data, case))
+
+
+def _unset_loads(data: dict, case: Case) -> tuple[str, ...]:
+    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude unless the
+    cycle stays at zero or a sweep gives the amplitudes) that ``data`` leaves out, for a cable
+    other than the built-in ones, whose defaults they are."""
+    from . import kinds
+
+    spec = data.get("cable", "cardinal")
+    if isinstance(spec, str) and spec.lower() in BUILTIN_CABLES:
+        return ()
+    needed = ["tension"]
+    if any(case.load.cycle) and not case.load.sweep:
+        needed.append(kinds.kind_of(case).parameter)
+    given = data.get("load", {})
+    return tuple(k for k in needed if k not in given)
+
+
+def check_loads_given(case: Case) -> None:
+    """Refuse (``CaseError``, one line) to run ``case`` with Cardinal's default loads on a cable
+    of its own: they would load a smaller strand far beyond what it carries."""
+    if case.unset_loads:
+        defaults = ", ".join(f"{k} = {getattr(case.load, k):g}" for k in case.unset_loads)
+        raise CaseError(
+            f"{case.source}: give [load] {', '.join(case.unset_loads)} for the cable "
+            f"{case.cable.name!r}: the defaults ({defaults}, in SI units) are the built-in "
+            "Cardinal's"
+        )
 
 
 def parse_settings(items: list[str]) -> dict:

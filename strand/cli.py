@@ -9,11 +9,16 @@ import time
 
 import numpy as np
 
+#: the name that runs the built-in default case (the seed paper's test on Cardinal)
+DEFAULT_CASE = "cardinal"
+
 USAGE = """\
-strand run  [case.toml]   the main job: tension, then the lateral saddle cycle (default: Cardinal,
-                          the seed paper's test); writes fields, CSV tables and figures
+strand run  case.toml     the main job: tension, then the case's cycle; writes fields, CSV tables,
+                          figures and the whole case (case.toml) into its results folder
+strand run  cardinal      the built-in case: the seed paper's saddle test on Cardinal, 1 m, 40 kN
+                          (several minutes, ~370 MB of results in results/cardinal)
 strand mesh [case.toml]   build the strand mesh and contact pairs, print the table, draw them
-strand compare [case.toml]
+strand compare case.toml | cardinal
                           run the case with small- and large-sliding contact; compare forces,
                           deflections and cost
 
@@ -90,10 +95,34 @@ def _mesh(args) -> int:
     return 0
 
 
-def _run(args) -> int:
-    from .case import CaseError, load_case
+def _case_to_run(args, parser):
+    """The case ``args.case`` names (a case file, or ``DEFAULT_CASE`` for the built-in one),
+    every setting checked before any computing; None, after the usage, if none is named."""
+    from pathlib import Path
 
-    case = load_case(args.case, args.set)  # every setting is checked here, before computing
+    from .case import check_loads_given, load_case
+
+    if args.case is None:
+        parser.print_usage(sys.stderr)
+        print(
+            f"strand {args.command}: give a case file, or '{DEFAULT_CASE}' for the built-in case "
+            f"(strand {args.command} {DEFAULT_CASE}: the seed paper's test on Cardinal, 1 m, "
+            "40 kN; several minutes and ~370 MB of results)",
+            file=sys.stderr,
+        )
+        return None
+    builtin = args.case.lower() == DEFAULT_CASE and not Path(args.case).exists()
+    case = load_case(None if builtin else args.case, args.set)
+    check_loads_given(case)
+    return case
+
+
+def _run(args, parser) -> int:
+    from .case import CaseError
+
+    case = _case_to_run(args, parser)  # every setting is checked here, before computing
+    if case is None:
+        return 2
     from .run import run_case
 
     if case.load.sweep:
@@ -109,10 +138,10 @@ def _run(args) -> int:
     return 130 if result.interrupted else 3 if result.failure else 0
 
 
-def _compare(args) -> int:
-    from .case import load_case
-
-    case = load_case(args.case, args.set)
+def _compare(args, parser) -> int:
+    case = _case_to_run(args, parser)
+    if case is None:
+        return 2
     from .compare import compare_case
 
     compare_case(case, args.out, overwrite=args.overwrite)
@@ -131,14 +160,14 @@ def main(argv: list[str] | None = None) -> int:
 
     run = sub.add_parser(
         "run",
-        help="tension then lateral cycle (default: Cardinal, the seed paper's test)",
+        help=f"tension then the case's cycle ({DEFAULT_CASE!r}: the seed paper's test)",
         description="Run a tension-bending case. Every setting lives in a TOML case file; a case "
         "lists only what it changes. Settings and defaults:\n\n"
         + case_module.__doc__.split("::", 1)[1].split("Unknown keys")[0],
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     run.add_argument(
-        "case", nargs="?", help="case file (TOML); default: the built-in Cardinal case"
+        "case", nargs="?", help=f"case file (TOML), or {DEFAULT_CASE!r} for the built-in case"
     )
     run.add_argument("--out", help="results folder (default: [output] folder, or results/<case>)")
     run.add_argument(
@@ -166,7 +195,7 @@ def main(argv: list[str] | None = None) -> int:
         "differences of the wire axial forces per layer and 45° sector, with an overlay figure.",
     )
     compare.add_argument(
-        "case", nargs="?", help="case file (TOML); default: the built-in Cardinal case"
+        "case", nargs="?", help=f"case file (TOML), or {DEFAULT_CASE!r} for the built-in case"
     )
     compare.add_argument(
         "--out", help="results folder (default: <case output folder>/sliding_comparison)"
@@ -190,8 +219,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "mesh":
             return _mesh(args)
         if args.command == "compare":
-            return _compare(args)
-        return _run(args)
+            return _compare(args, compare)
+        return _run(args, run)
     except (CableError, CaseError, FolderError, CheckpointError) as e:
         from .parallel import is_root
 

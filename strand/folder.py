@@ -1,6 +1,7 @@
 """The results folder of a run: created and checked before any computing, never shared by two runs.
 
-A run owns the files at the top of its folder (``settings.txt`` marks them as a run's). A second
+A run owns the files at the top of its folder (``case.toml``, the whole case written first, marks
+them as a run's; ``settings.txt`` marks an older strand's run). A second
 run into a folder that holds a run is refused unless asked to ``overwrite``, which first removes
 the earlier run's files (and its ``*.bp`` field folders), so that no figure or field of one run
 can sit beside another run's tables. Sub-folders (another run's own folder, e.g. a comparison's)
@@ -15,7 +16,9 @@ from pathlib import Path
 __all__ = ["FolderError", "RUN_MARKER", "prepare_results_folder", "writable_folder"]
 
 #: the file every run writes first into its folder
-RUN_MARKER = "settings.txt"
+RUN_MARKER = "case.toml"
+#: the file older strand versions wrote first instead
+_OLD_MARKERS = ("settings.txt",)
 
 
 class FolderError(ValueError):
@@ -50,7 +53,7 @@ def prepare_results_folder(folder: str | Path, overwrite: bool = False) -> Path:
         if not p.name.startswith(".") and (p.is_file() or p.suffix == ".bp")
     ]  # fmt: skip
     if owned:
-        if not (folder / RUN_MARKER).is_file():
+        if not any((folder / m).is_file() for m in (RUN_MARKER, *_OLD_MARKERS)):
             raise FolderError(
                 f"{folder}: holds files that are not a strand run's; give a new or empty folder"
             )

@@ -34,9 +34,10 @@ from .recorders import (
     StepContext,
     StepTable,
 )
+from .run_files import write_folder_readme
 from .run_result import RunResult, Start
 from .solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
-from .summary import summarize
+from .summary import summarize, wire_stress_line, yield_warnings
 
 __all__ = ["run_programme_with_outputs", "Recording", "Progress", "run_fatigue_report"]
 
@@ -117,6 +118,7 @@ class Recording:
         stream, keep: Callable[[RunStep], bool] | None = None,
     ):  # fmt: skip
         self.problem, self.programme, self.result, self.keep = problem, programme, result, keep
+        self.case, self.stream = case, stream
         self.evaluator = CellEvaluator(problem.model)
         self.key_states = KeyStates()
         self.recorders = case_recorders(
@@ -165,6 +167,17 @@ class Recording:
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
         self.progress.step(stage, value, rec.iterations, rec.cuts, extra)
+        if stage.parameter == "tension" and value == stage.target:
+            self.tensioned(ctx)
+
+    def tensioned(self, ctx: StepContext) -> None:
+        """At the end of the tension: the mean wire stress per layer, and a warning (kept for
+        the summary) for every layer whose wires pass the yield stress given with the cable."""
+        cable, length = self.case.cable, self.problem.geometry.length
+        print(wire_stress_line(cable, ctx.cells, length).strip(), file=self.stream, flush=True)
+        for warning in yield_warnings(cable, ctx.cells):
+            self.result.warnings.append(warning)
+            print(f"strand: warning: {warning}", file=self.stream, flush=True)
 
     def start_from(self, start: Start) -> None:
         """The state the run starts from, as its first row; the stages before it done."""
@@ -215,6 +228,7 @@ def run_programme_with_outputs(
     if is_root():  # the summary, report and figures read what every rank has (or rank 0 wrote)
         (folder / "summary.txt").write_text(summary)
         _report_and_figures(case, result, problem, recording, stream)
+        write_folder_readme(folder)
     return result
 
 

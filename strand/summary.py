@@ -1,6 +1,6 @@
 """The closing summary of a run (``summary.txt``): its effort, the tensioned state against the
 fibre model, the set-up kind's own lines (``SetupKind.summary_lines``), the bending stiffness
-bounds, and any warning or failure. Units: N, N/m, µε, s."""
+bounds, and any warning or failure. Units: N, N/m, µε, MPa, s."""
 
 from __future__ import annotations
 
@@ -13,7 +13,17 @@ from .pair_results import PairResults
 from .post import bending_stiffness_bounds, fibre_model
 from .run_result import RunResult
 
-__all__ = ["summarize", "effort_line", "tension_lines", "contact_force_line"]
+__all__ = [
+    "summarize",
+    "effort_line",
+    "tension_lines",
+    "contact_force_line",
+    "layer_stresses",
+    "wire_stress_line",
+    "yield_warnings",
+]
+
+Array = np.ndarray
 
 
 def summarize(case: Case, result: RunResult, problem) -> str:
@@ -66,8 +76,46 @@ def tension_lines(case: Case, result: RunResult, geometry) -> list[str]:
         lines.append(
             f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
         )
+    lines.append(wire_stress_line(case.cable, t, L))
     lines.append(contact_force_line(geometry, result.tensioned_pairs))
     return lines
+
+
+def layer_stresses(cable, cells, length: float) -> Array:
+    """Mean axial stress N/A (Pa) of each layer's wires over the middle half of the strand."""
+    middle = np.abs(cells.z - length / 2) < length / 4
+    return np.array([
+        cells.axial[middle & (cells.layer == i)].mean() / lay.wire.area
+        for i, lay in enumerate(cable.layers)
+    ])  # fmt: skip
+
+
+def wire_stress_line(cable, cells, length: float) -> str:
+    """The mean axial wire stress per layer (MPa) over the middle half of the strand."""
+    stress = layer_stresses(cable, cells, length)
+    parts = [f"{'core' if i == 0 else f'layer {i}'} {s / 1e6:.0f}" for i, s in enumerate(stress)]
+    return "  mean wire stress, middle half (MPa): " + ", ".join(parts)
+
+
+def yield_warnings(cable, cells) -> list[str]:
+    """One warning per layer whose wires' axial stress N/A exceeds the ``yield_stress`` given
+    with the cable (bending adds to it at the wire surface)."""
+    out = []
+    for i, lay in enumerate(cable.layers):
+        limit = lay.wire.yield_stress
+        mine = cells.layer == i
+        if limit is None or not np.any(mine):
+            continue
+        stress = np.abs(cells.axial[mine]) / lay.wire.area
+        k = int(np.argmax(stress))
+        if stress[k] > limit:
+            name = "core" if i == 0 else f"layer {i}"
+            out.append(
+                f"{name}: a wire's axial stress reaches {stress[k] / 1e6:.0f} MPa (wire "
+                f"{cells.wire[mine][k]}, z = {cells.z[mine][k]:.3g} m), above its yield stress "
+                f"{limit / 1e6:.0f} MPa: the elastic wires of the model no longer hold"
+            )
+    return out
 
 
 def contact_force_line(geometry, pairs: PairResults) -> str:

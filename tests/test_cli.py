@@ -10,6 +10,7 @@ import signal
 import subprocess
 import sys
 import time
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -107,7 +108,7 @@ def test_the_command_line_keeps_one_run_per_folder(tmp_path, capsys):
     second = {p.name for p in out.iterdir()}
     assert "fields.xdmf" in second and "fields.bp" not in second, second
     assert not any(n.endswith(".png") for n in second), second
-    assert "vtx = False" in (out / "settings.txt").read_text()
+    assert tomllib.loads((out / "case.toml").read_text())["output"]["vtx"] is False
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "notes.txt").write_text("not a run")
     capsys.readouterr()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import tomllib
 
 import numpy as np
 import pytest
@@ -86,7 +87,7 @@ def test_run_writes_every_output_and_balances_the_section(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "[" in text and "Newton its" in text and "done:" in text
     for name in ("fields.xdmf", "fields.h5", "steps.csv", "axial_forces.csv",
-                 "moment_curvature.csv", "summary.txt", "settings.txt"):  # fmt: skip
+                 "moment_curvature.csv", "summary.txt", "case.toml", "README.txt"):  # fmt: skip
         assert (out / name).stat().st_size > 0, name
     assert (out / "fields.bp").is_dir()
     with open(out / "steps.csv") as f:
@@ -156,7 +157,8 @@ def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
     assert (out / "sliding_comparison.png").stat().st_size > 0
     for model in ("small", "large"):
         assert (out / model / "steps.csv").stat().st_size > 0
-        assert f"model = {model!r}" in (out / model / "settings.txt").read_text()
+        case_file = tomllib.loads((out / model / "case.toml").read_text())
+        assert case_file["contact"]["model"] == model
 
 
 def test_small_sliding_check_against_its_closed_form():

@@ -1,14 +1,19 @@
-"""Stick bending: what same-layer contact does to a strand's moment–curvature.
+"""Stick bending: what the slip measure and same-layer contact do to a strand's moment–curvature.
 
-Run: .venv/bin/python benchmarks/stick_bending.py [strand ...] [--length L] [--same-layer S ...]
+Run: .venv/bin/python benchmarks/stick_bending.py [strand ...] [--length L] [--slip M ...]
+[--same-layer S ...]
 Strands: "19" (Cardinal's core and layers 1–2, 0.3 m, 10 kN) and "cardinal" (0.6 m, 40 kN), each
-with its own friction and Hertz + Mindlin contact. For each same-layer setting (off, nominal,
-packed: ``strand.same_layer``) it loads the uniform bending test monotonically through κ = 0.002,
-0.01, 0.05, 0.1, 0.25, 0.5 1/m (nominal end curvature) and prints, one row per variant: the
-smeared estimate's stick slope with the spin free (``strand.analytical.stick_bending_estimate``),
-the first step's M/κ over EI_max, the zone moment M at each curvature beside the stick–slip law
-(cumulative pressure), the share of same-layer pairs closed at the first step, and the cost.
-Prints the machine, commit and command first; a variant that stops prints why.
+with its own friction and Hertz + Mindlin contact. For each slip measure (surface, centreline:
+``strand.contact.element``) and same-layer setting (off, nominal, packed: ``strand.same_layer``)
+it loads the uniform bending test monotonically through κ = 0.002, 0.01, 0.05, 0.1, 0.25, 0.5
+1/m (nominal end curvature) and prints, one row per variant: the smeared estimate's stick slope
+with the spin free (``strand.analytical.stick_bending_estimate``), the first step's M/κ over
+EI_max, the zone moment M at each curvature beside the stick–slip law (cumulative pressure), the
+slip onset per interface (the first of those κ at which 10 % of the interface's pairs in the
+measuring zone slip; ">" none by 0.5), the share of same-layer pairs closed at the first step,
+and the cost (wall time and Newton iterations, failed ones included). Loop areas need a full
+cycle and are not measured here (the bending case's summary gives them). Prints the machine,
+commit and command first; a variant that stops prints why.
 """
 
 import strand  # noqa: F401
@@ -22,6 +27,8 @@ import sys
 import time
 from functools import partial
 from pathlib import Path
+
+import numpy as np
 
 from strand.analytical import StickSlipLaw, stick_bending_estimate
 from strand.cable import Cable, cardinal
@@ -61,13 +68,36 @@ def bend(cable: Cable, length: float, tension: float, same_layer: str, slip: str
         yield zone, problem, its
 
 
+def zone_slipping(problem) -> list[float]:
+    """Per interface i | i + 1: the share of its pairs in the measuring zone that slip."""
+    g = problem.model.geometry
+    z = g.points[g.pairs.a, 2]
+    lo, hi = problem.setup.measuring_zone
+    inside = (z >= lo) & (z <= hi)
+    slipping = problem.pair_results().slipping
+    shares = []
+    for i in range(len(g.cable.layers) - 1):
+        mine = inside & (g.pairs.interface == i)
+        shares.append(float(slipping[mine].mean()) if mine.any() else np.nan)
+    return shares
+
+
+def onset(shares: list[list[float]]) -> str:
+    """The first κ of ``KAPPAS`` at which ≥ 10 % of each interface's zone pairs slip."""
+    out = []
+    for i in range(len(shares[0]) if shares else 0):
+        hit = [k for k, row in zip(KAPPAS, shares, strict=False) if row[i] >= 0.1]
+        out.append(f"{hit[0]:g}" if hit else ">")
+    return "/".join(out) or "–"
+
+
 def row(name: str, same_layer: str, slip: str, length: float | None) -> str:
     cable, default_length, tension = strands()[name]
     length = length or default_length
     _, ei_max = bending_stiffness_bounds(cable)
     law = StickSlipLaw(cable, tension)
     estimate = stick_bending_estimate(cable).ratio
-    cells, slope, closed, effort = [], "", "", 0
+    cells, slope, closed, effort, shares = [], "", "", 0, []
     t0 = time.perf_counter()
     try:
         for zone, problem, its in bend(cable, length, tension, same_layer, slip):
@@ -77,6 +107,7 @@ def row(name: str, same_layer: str, slip: str, length: float | None) -> str:
                 groups = problem.model.same_layer
                 closed = f"{(groups[0].state.force > 0).mean():.2f}" if groups else "-"
             cells.append(f"{M:.2f} ({float(law.moment(k)):.2f})")
+            shares.append(zone_slipping(problem))
         problem.solver.destroy()
         outcome = ""
     except LoadStepFailure as e:
@@ -84,7 +115,7 @@ def row(name: str, same_layer: str, slip: str, length: float | None) -> str:
     cells += ["–"] * (len(KAPPAS) - len(cells))
     seconds = time.perf_counter() - t0
     return (f"| {cable.name}, {length:g} m, {tension / 1e3:g} kN | {slip} | {same_layer} | {estimate:.3f} | "
-            f"{slope or '–'} | " + " | ".join(cells) + f" | {closed} | {seconds:.0f} s, {effort} its"
+            f"{slope or '–'} | " + " | ".join(cells) + f" | {onset(shares)} | {closed} | {seconds:.0f} s, {effort} its"
             f"{outcome} |")  # fmt: skip
 
 
@@ -107,7 +138,7 @@ def main() -> None:
     args = parser.parse_args()
     print(stamp())
     head = ["strand", "slip", "same layer", "estimate", "M/κ / EI_max",
-            *(f"M at {k:g} (law)" for k in KAPPAS), "closed", "cost"]  # fmt: skip
+            *(f"M at {k:g} (law)" for k in KAPPAS), "slip onset κ", "closed", "cost"]  # fmt: skip
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for name in args.strand:

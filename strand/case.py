@@ -71,8 +71,14 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     sn_A2 = 263.0             #   sn_A2 N^sn_b2 beyond
     sn_b2 = -0.17
     sn_layers = []            # layers (0 = core) the curve applies to; [] = those with E < 100 GPa
+    steel_sn_curve = "en1992-prestressing-steel"  # the other steel wires' (E ≥ 100 GPa) curve,
+                              #   or "en1992-steel-duct" (fretting), or "none": not assessed
     surface_points = 16       # points around each wire's circumference (ranges within 2 %)
     clamp_distance = 0.089    # m, Poffenberger–Swart's distance from the clamp (3.5 in)
+    end_zone = 0.0            # m, clamp zone at each end, reported apart from the free span;
+                              #   0: one lay length of the outer layer
+    stuck_slip = 1e-9         # m, pairs that slide less than this stayed stuck throughout
+    breaking_strength = 0.0   # N, minimum breaking strength for API RP 2SK's T–N; 0: not given
 
 Unknown keys and bad values are errors naming the file and the key, raised before any computing.
 """
@@ -141,7 +147,7 @@ SECTIONS = {
 #: names its own: ``SetupKind.signed``)
 _SIGNED = {("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 #: settings for which 0 means "off" (they must not be negative)
-_ZERO_IS_OFF = {("steps", "balance")}
+_ZERO_IS_OFF = {("steps", "balance"), ("fatigue", "end_zone"), ("fatigue", "breaking_strength")}
 #: PETSc's line searches for Newton (``[steps] line_search``)
 LINE_SEARCHES = ("cp", "basic", "bt", "l2")
 
@@ -305,6 +311,11 @@ def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
         raise CaseError(
             f"[fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
             f'{sorted(SN_CURVES)} or "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2)'
+        )
+    if fatigue.steel_sn_curve not in (*SN_CURVES, "none"):
+        raise CaseError(
+            f"[fatigue] steel_sn_curve = {fatigue.steel_sn_curve!r} is unknown; choose one of "
+            f'{sorted(SN_CURVES)} or "none"'
         )
     try:
         fatigue.curve()

@@ -5,16 +5,21 @@ cycle counting, Miner damage and Poffenberger–Swart's reference, from the run'
 ``strand.recorders``), counts the load cycles of the history (rainflow on the cycle load, the
 tensioned state first) and writes:
 
-* ``crossings.csv`` — per contact pair: interface, wires, z, angle, worst cycle's slip amplitude,
-  friction force amplitude, peak and mean normal force, Hertz contact (semi-axes, peak pressure),
-  largest tensile surface stress, Ruiz's F₁ and F₂, dissipated energy over the history, Miner
-  damage of the two wires' surfaces facing each other;
-* ``wire_stresses.csv`` — per element: the surface point of largest stress range (its angle ψ from
-  the strand's outward radius), that range, its mean, the torsional shear range;
-* ``wires.csv`` — per wire: largest stress range and where, Miner damage of the history and the
-  number of repetitions of the history to failure (wires under the S–N curve);
-* ``fatigue.txt`` — the ten worst crossings and hot spots, the first wires to fail, and
-  Poffenberger–Swart against the model at the clamp.
+* ``crossings.csv`` — per contact pair: interface, wires, z, its zone (free span or clamp zone,
+  ``strand.fatigue.zones``), angle, whether it stayed stuck throughout (Coulomb slide below
+  ``[fatigue] stuck_slip``), worst cycle's slip amplitude, friction force amplitude, peak and
+  mean normal force, Hertz contact (semi-axes, peak pressure), largest tensile surface stress,
+  Ruiz's F₁ and F₂, dissipated energy over the history, Miner damage of the two wires' surfaces
+  facing each other (NaN, "not assessed", where neither wire's material has an S–N curve);
+* ``wire_stresses.csv`` — per element: its zone, the surface point of largest stress range (its
+  angle ψ from the strand's outward radius), that range, its mean, the torsional shear range;
+* ``wires.csv`` — per wire: its layer's S–N curve (or "not assessed"), largest stress range and
+  where, Miner damage of the history and the number of repetitions of the history to failure,
+  over the whole wire and in the free span and the clamp zone apart (NaN where not assessed);
+* ``fatigue.txt`` — per zone the five worst crossings, hot spots and first wires to fail; the
+  strand-level T–N check of the mooring standards (``strand.fatigue.tn``) on the strand's tension
+  history beside the wire-level damage; Poffenberger–Swart against the model at the clamp where
+  its long-span assumption holds (``strand.fatigue.poffenberger``), else why not.
 
 Units: SI in the computation; the CSV columns name theirs (µm, MPa where that reads better).
 """
@@ -33,9 +38,13 @@ from .cable import Cable
 from .case import FatigueSettings
 from .contact.hertz import contact_ellipse, line_contact
 from .fatigue.cycles import Cycles, rainflow_cycles
-from .fatigue.fretting import crossing_cycles, ruiz_parameters
-from .fatigue.sn import SNCurve, miner_damage
+from .fatigue.fretting import crossing_cycles, ruiz_parameters, stuck_throughout
+from .fatigue.poffenberger import span_check
+from .fatigue.sn import SN_CURVES, SNCurve, miner_damage
 from .fatigue.stress import shear_stress, surface_stress
+from .fatigue.tn import TENSION_CYCLE_SHARE, tension_damage
+from .fatigue.zones import in_clamp_zone, zone_names
+from .fatigue_text import summary_text
 from .history import History, read_history
 
 __all__ = ["FatigueReport", "fatigue_report", "ReportError"]
@@ -55,8 +64,11 @@ class FatigueReport:
     crossings: dict[str, Array]
     elements: dict[str, Array]
     wires: dict[str, Array]
-    poffenberger_swart: dict | None
+    poffenberger_swart: dict | None  # None: no clamp; "holds" False: skipped, "reason" says why
     text: str
+    end_zone: float = 0.0  # m, the clamp zone's length at each end
+    length: float = 0.0  # m, the span
+    tension_check: dict | None = None  # the strand-level T–N check (``tension_check``)
 
 
 def _surface_angles(n: int) -> Array:
@@ -90,13 +102,13 @@ def _pair_cells_and_angles(pairs: History, sections: History):
 def _write_csv(path: Path, columns: dict[str, npt.ArrayLike], formats: dict[str, str]) -> None:
     names = list(columns)
     arrays = [np.asarray(columns[n]) for n in names]
+    kinds = ["s" if a.dtype.kind in "US" else formats.get(n, "g") for n, a in zip(names, arrays,
+                                                                                    strict=True)]  # fmt: skip
     with open(path, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(names)
         for row in zip(*arrays, strict=True):
-            writer.writerow(
-                [format(v, formats.get(n, "g")) for n, v in zip(names, row, strict=True)]
-            )
+            writer.writerow([format(v, k) for k, v in zip(kinds, row, strict=True)])
 
 
 def _load_cycles(history: History) -> Cycles:
@@ -107,10 +119,26 @@ def _load_cycles(history: History) -> Cycles:
     return cycles
 
 
-def crossing_results(pairs: History, sections: History, cable: Cable, curve: SNCurve,
-                     layers: list[int], cycles: Cycles) -> dict[str, Array]:  # fmt: skip
-    """Per pair: the worst counted cycle's fretting results, Hertz contact, Ruiz's parameters
-    and the Miner damage of the wires' facing surfaces (see the module docstring)."""
+def _curve_key(curve: SNCurve | None) -> str:
+    """The ``SN_CURVES`` key of ``curve`` ("custom" for a case file's, "not assessed" for None)."""
+    if curve is None:
+        return "not assessed"
+    return next((k for k, c in SN_CURVES.items() if c == curve), "custom")
+
+
+def _damage(series: Array, curve: SNCurve | None) -> float:
+    """Miner damage of a stress history (rainflow), NaN where no curve applies."""
+    if curve is None:
+        return np.nan
+    c = rainflow_cycles(series)
+    return miner_damage(c.range, c.count, curve)
+
+
+def crossing_results(pairs: History, sections: History, cable: Cable, curves: list,
+                     cycles: Cycles, stuck_slip: float) -> dict[str, Array]:  # fmt: skip
+    """Per pair: the worst counted cycle's fretting results, Hertz contact, Ruiz's parameters,
+    whether it stayed stuck throughout (``stuck_slip``, m) and the Miner damage of the wires'
+    facing surfaces under their layers' ``curves`` (NaN where neither has one)."""
     st = pairs.static
     cc = crossing_cycles(cycles, pairs["force"], pairs["friction"], pairs["slip"],
                          pairs["sliding"], pairs["work"])  # fmt: skip
@@ -139,12 +167,14 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curve: SNC
     f1, f2 = ruiz_parameters(cc.friction_amplitude, area, cc.slip_amplitude, sigma_peak)
     worst = np.argmax(f2 if np.any(f2 > 0) else cc.slip_amplitude, axis=0)  # (P,)
     pick = lambda x: np.take_along_axis(x, worst[None, :], axis=0)[0]  # noqa: E731
-    layer_ok = np.isin(inner, layers), np.isin(outer, layers)
-    damage = np.zeros(len(line))
-    for s_series, ok in ((sigma_a, layer_ok[0]), (sigma_b, layer_ok[1])):
-        for k in np.flatnonzero(ok):
-            c = rainflow_cycles(s_series[:, k])
-            damage[k] = max(damage[k], miner_damage(c.range, c.count, curve))
+    damage = np.full(len(line), np.nan)
+    for k in range(len(line)):
+        sides = [_damage(s[:, k], curves[i]) for s, i in ((sigma_a, inner[k]), (sigma_b, outer[k]))]
+        if not np.all(np.isnan(sides)):
+            damage[k] = np.nanmax(sides)
+    has = np.array([c is not None for c in curves])
+    assessed = np.select([has[inner] & has[outer], has[inner], has[outer]],
+                         ["both", "inner", "outer"], "not assessed")  # fmt: skip
     return {
         "slip_amplitude": pick(cc.slip_amplitude),
         "displacement_amplitude": pick(cc.displacement_amplitude),
@@ -153,15 +183,16 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curve: SNC
         "mean_force": pick(cc.mean_force),
         "semi_axis_a": pick(a), "semi_axis_b": pick(b), "peak_pressure": pick(p0),
         "surface_stress": pick(sigma_peak), "ruiz_f1": pick(f1), "ruiz_f2": pick(f2),
-        "energy": cc.energy.sum(axis=0), "damage": damage,
+        "energy": cc.energy.sum(axis=0), "damage": damage, "assessed": assessed,
+        "stuck": stuck_throughout(pairs["sliding"], stuck_slip),
     }  # fmt: skip
 
 
-def element_results(sections: History, n_points: int, curve: SNCurve,
-                    layers: list[int]) -> dict[str, Array]:  # fmt: skip
+def element_results(sections: History, n_points: int, curves: list) -> dict[str, Array]:
     """Per element: the surface point of largest stress range over the history, its range,
     mean and peak, the torsional shear range, and the Miner damage at the worst point of the
-    element (rainflow on every point's stress history, elements of ``layers`` only)."""
+    element (rainflow on every point's stress history, under its layer's curve in ``curves``;
+    NaN where the layer has none)."""
     st = sections.static
     psi = _surface_angles(n_points)
     N, m1, m2 = (sections[k][..., None] for k in ("axial", "m1", "m2"))
@@ -171,11 +202,11 @@ def element_results(sections: History, n_points: int, curve: SNCurve,
     worst = np.argmax(ranges, axis=1)
     rows = np.arange(len(worst))
     tau = shear_stress(sections["torque"], st["diameter"])
-    damage = np.zeros(len(worst))
-    for e in np.flatnonzero(np.isin(st["layer"], layers)):
-        for k in range(n_points):
-            c = rainflow_cycles(sigma[:, e, k])
-            damage[e] = max(damage[e], miner_damage(c.range, c.count, curve))
+    damage = np.full(len(worst), np.nan)
+    for e in rows:
+        curve = curves[st["layer"][e]]
+        if curve is not None:
+            damage[e] = max(_damage(sigma[:, e, k], curve) for k in range(n_points))
     return {
         "angle": np.degrees(psi[worst]), "range": ranges[rows, worst],
         "mean": 0.5 * (hi + lo)[rows, worst], "peak": hi[rows, worst],
@@ -183,34 +214,91 @@ def element_results(sections: History, n_points: int, curve: SNCurve,
     }  # fmt: skip
 
 
-def wire_results(sections: History, elements: dict[str, Array], layers: list[int]):
-    """Per wire: largest stress range, its element's z and angle, the Miner damage of the
-    history and repetitions to failure (inf where the S–N curve does not apply or D = 0)."""
+def _worst_of(elements: dict[str, Array], z: Array, mine: Array) -> tuple:
+    """Largest range, its z and angle, and the largest damage (NaN: not assessed, or no
+    element) over the elements ``mine``."""
+    if len(mine) == 0:
+        return np.nan, np.nan, np.nan, np.nan
+    k = mine[np.argmax(elements["range"][mine])]
+    d = elements["damage"][mine]
+    return elements["range"][k], z[k], elements["angle"][k], (np.nan if np.all(np.isnan(d))
+                                                              else np.nanmax(d))  # fmt: skip
+
+
+def _repetitions(damage: Array) -> Array:
+    """Repetitions of the history to failure 1/D: inf where D = 0, NaN where not assessed."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(damage > 0, 1 / damage, np.where(np.isnan(damage), np.nan, np.inf))
+
+
+def wire_results(sections: History, elements: dict[str, Array], clamp: Array, curves: list):
+    """Per wire: its layer and curve key; over the whole wire and in the free span and the
+    clamp zone (``clamp``: the elements' mask) apart: the largest stress range, its element's z
+    and angle, the Miner damage of the history and the repetitions to failure."""
     st = sections.static
     n_wires = int(st["wire"].max()) + 1
-    out = {k: np.zeros(n_wires) for k in ("layer", "range", "z", "angle", "damage", "repetitions")}
+    out: dict[str, Array] = {"layer": np.zeros(n_wires, int)}
+    masks = {"": np.ones_like(clamp), "_free": ~clamp, "_clamp": clamp}
+    for suffix in masks:
+        for k in ("range", "z", "angle", "damage"):
+            out[k + suffix] = np.full(n_wires, np.nan)
     for w in range(n_wires):
-        mine = np.flatnonzero(st["wire"] == w)
-        k = mine[np.argmax(elements["range"][mine])]
-        out["layer"][w] = st["layer"][k]
-        out["range"][w], out["z"][w], out["angle"][w] = (
-            elements["range"][k],
-            st["z"][k],
-            elements["angle"][k],
-        )
-        out["damage"][w] = elements["damage"][mine].max()
-    with np.errstate(divide="ignore"):
-        out["repetitions"] = np.where(out["damage"] > 0, 1 / out["damage"], np.inf)
+        on = st["wire"] == w
+        out["layer"][w] = st["layer"][np.flatnonzero(on)[0]]
+        for suffix, mask in masks.items():
+            values = _worst_of(elements, st["z"], np.flatnonzero(on & mask))
+            for k, v in zip(("range", "z", "angle", "damage"), values, strict=True):
+                out[k + suffix][w] = v
+    for suffix in masks:
+        out["repetitions" + suffix] = _repetitions(out["damage" + suffix])
+    out["curve"] = np.array([_curve_key(curves[i]) for i in out["layer"]])
     return out
+
+
+def strand_tension(sections: History, cable: Cable, length: float) -> Array:
+    """The strand's tension (N) per step at midspan: Σ N cos α over every wire's element
+    nearest z = ``length``/2 (the wires' shear forces left out)."""
+    st = sections.static
+    cos = np.cos([lay.alpha for lay in cable.layers])
+    cells = [np.flatnonzero(st["wire"] == w)[np.argmin(np.abs(st["z"][st["wire"] == w]
+                                                              - length / 2))]
+             for w in np.unique(st["wire"])]  # fmt: skip
+    return sections["axial"][:, cells] @ cos[st["layer"][cells]]
+
+
+def tension_check(sections: History, cable: Cable, length: float, breaking_strength: float,
+                  wires: dict[str, Array]) -> dict:  # fmt: skip
+    """The mooring standards' strand-level check on the strand's tension history (rainflow):
+    DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage, beside the wire-level
+    model's largest damage on the same history; ``cycle`` False where the tension stays within
+    ``TENSION_CYCLE_SHARE`` of its mean."""
+    tension = strand_tension(sections, cable, length)
+    c = rainflow_cycles(tension)
+    area = sum(lay.wires * lay.wire.area for lay in cable.layers)
+    dnv, api = tension_damage(c.range, c.count, c.mean, area, breaking_strength)
+    largest = float(c.range.max()) if len(c) else 0.0
+    damage = wires["damage"]
+    worst = int(np.nanargmax(damage)) if not np.all(np.isnan(damage)) else None
+    return {
+        "mean": float(np.mean(tension)), "range": largest, "area": area,
+        "cycle": largest >= TENSION_CYCLE_SHARE * abs(float(np.mean(tension))),
+        "dnv": dnv, "api": api, "wire": worst,
+        "wire_damage": float(damage[worst]) if worst is not None else np.nan,
+    }  # fmt: skip
 
 
 def poffenberger_swart_check(sections: History, elements: dict[str, Array], cable: Cable,
                              tension: float, direction, distance: float) -> dict:  # fmt: skip
-    """Poffenberger–Swart at the clamp z = 0: Y_b the peak-to-peak displacement of the strand
-    axis along ``direction`` at ``distance`` from it over the history, K Y_b the outer wires'
-    idealised amplitude, against half the model's largest outer-wire stress range over the
-    clamp's first ``distance``/4 (the clamp mouth)."""
+    """Poffenberger–Swart at the clamp z = 0, where its long-span assumption holds
+    (``strand.fatigue.poffenberger.span_check``; else ``holds`` False and the ``reason``): Y_b
+    the peak-to-peak displacement of the strand axis along ``direction`` at ``distance`` from
+    it over the history, K Y_b the outer wires' idealised amplitude, against half the model's
+    largest outer-wire stress range over the clamp's first ``distance``/4 (the clamp mouth)."""
     st = sections.static
+    span = float(st["core_z"].max() - st["core_z"].min())
+    check = span_check(cable, tension, span, distance)
+    if not check.holds:
+        return {"holds": False, "reason": check.reason, "distance": distance, "span": span}
     d = np.asarray(direction, float) / np.linalg.norm(direction)
     u = sections["core_u"] @ d  # (S, n_core)
     y = np.array([np.interp(distance, st["core_z"], row) for row in u])
@@ -220,8 +308,9 @@ def poffenberger_swart_check(sections: History, elements: dict[str, Array], cabl
     mouth = (st["layer"] == outer) & (st["z"] < distance / 4)
     model = 0.5 * float(elements["range"][mouth].max())
     ref = K * y_b
-    return {"K": K, "Y_b": y_b, "sigma_a": ref, "model": model,
-            "ratio": model / ref if ref > 0 else np.nan, "distance": distance}  # fmt: skip
+    return {"holds": True, "K": K, "Y_b": y_b, "sigma_a": ref, "model": model,
+            "ratio": model / ref if ref > 0 else np.nan, "distance": distance, "span": span,
+            "span_error": check.error}  # fmt: skip
 
 
 def fatigue_report(
@@ -239,17 +328,22 @@ def fatigue_report(
     pairs = read_history(folder / "contact_pairs.h5")
     sections = read_history(folder / "wire_sections.h5")
     cycles = _load_cycles(sections)
-    curve, layers = settings.curve(), settings.layers(cable)
-    crossings = crossing_results(pairs, sections, cable, curve, layers, cycles)
-    elements = element_results(sections, settings.surface_points, curve, layers)
-    wires = wire_results(sections, elements, layers)
+    curves = settings.curves(cable)
+    length = float(sections.static["core_z"].max())
+    end_zone = settings.end_zone_length(cable)
+    crossings = crossing_results(pairs, sections, cable, curves, cycles, settings.stuck_slip)
+    crossings["clamp"] = in_clamp_zone(pairs.static["z"], length, end_zone)
+    elements = element_results(sections, settings.surface_points, curves)
+    elements["clamp"] = in_clamp_zone(sections.static["z"], length, end_zone)
+    wires = wire_results(sections, elements, elements["clamp"], curves)
+    tn = tension_check(sections, cable, length, settings.breaking_strength, wires)
     ps = (
         poffenberger_swart_check(sections, elements, cable, tension, direction,
                                  settings.clamp_distance)
         if clamp else None
     )  # fmt: skip
-    text = summary_text(pairs, sections, cycles, crossings, elements, wires, ps, curve, layers)
-    report = FatigueReport(cycles, crossings, elements, wires, ps, text)
+    report = FatigueReport(cycles, crossings, elements, wires, ps, "", end_zone, length, tn)
+    report.text = summary_text(pairs, sections, cable, curves, settings, report)
     if write:
         write_report(folder, pairs, sections, report)
     return report
@@ -260,8 +354,10 @@ def write_report(folder: Path, pairs: History, sections: History, r: FatigueRepo
     st, c = pairs.static, r.crossings
     _write_csv(folder / "crossings.csv", {
         "pair": np.arange(len(st["z"])), "interface": st["interface"], "wire_a": st["wire_a"],
-        "wire_b": st["wire_b"], "line": st["line"], "z_m": st["z"], "angle_deg": st["angle"],
+        "wire_b": st["wire_b"], "line": st["line"], "z_m": st["z"],
+        "zone": zone_names(c["clamp"]), "angle_deg": st["angle"],
         "crossing_angle_deg": st["crossing_angle"],
+        "stuck_throughout": c["stuck"].astype(int),
         "slip_amplitude_um": 1e6 * c["slip_amplitude"],
         "displacement_amplitude_um": 1e6 * c["displacement_amplitude"],
         "friction_amplitude_N": c["friction_amplitude"], "peak_force_N": c["peak_force"],
@@ -269,77 +365,27 @@ def write_report(folder: Path, pairs: History, sections: History, r: FatigueRepo
         "hertz_b_um": 1e6 * c["semi_axis_b"], "peak_pressure_MPa": 1e-6 * c["peak_pressure"],
         "surface_stress_MPa": 1e-6 * c["surface_stress"], "ruiz_F1_J_m2": c["ruiz_f1"],
         "ruiz_F2_MPa_J_m2": 1e-6 * c["ruiz_f2"], "energy_J": c["energy"], "damage": c["damage"],
+        "damage_assessed": c["assessed"],
     }, {"z_m": ".5f", "angle_deg": ".2f", "crossing_angle_deg": ".2f"})  # fmt: skip
     s, e = sections.static, r.elements
     _write_csv(folder / "wire_stresses.csv", {
         "element": np.arange(len(s["z"])), "wire": s["wire"], "layer": s["layer"], "z_m": s["z"],
-        "phi_deg": s["phi"], "psi_deg": e["angle"], "range_MPa": 1e-6 * e["range"],
-        "mean_MPa": 1e-6 * e["mean"], "peak_MPa": 1e-6 * e["peak"],
-        "shear_range_MPa": 1e-6 * e["shear_range"], "damage": e["damage"],
+        "zone": zone_names(e["clamp"]), "phi_deg": s["phi"], "psi_deg": e["angle"],
+        "range_MPa": 1e-6 * e["range"], "mean_MPa": 1e-6 * e["mean"],
+        "peak_MPa": 1e-6 * e["peak"], "shear_range_MPa": 1e-6 * e["shear_range"],
+        "damage": e["damage"],
     }, {"z_m": ".5f", "phi_deg": ".2f", "psi_deg": ".1f"})  # fmt: skip
     w = r.wires
-    _write_csv(folder / "wires.csv", {
-        "wire": np.arange(len(w["range"])), "layer": w["layer"].astype(int),
-        "range_MPa": 1e-6 * w["range"], "z_m": w["z"], "psi_deg": w["angle"],
-        "damage": w["damage"], "repetitions_to_failure": w["repetitions"],
-    }, {"z_m": ".5f", "psi_deg": ".1f"})  # fmt: skip
+    columns = {"wire": np.arange(len(w["range"])), "layer": w["layer"], "sn_curve": w["curve"]}
+    for suffix, zone in (("", ""), ("_free", "_free_span"), ("_clamp", "_clamp_zone")):
+        columns |= {
+            f"range{zone}_MPa": 1e-6 * w["range" + suffix],
+            f"z{zone}_m": w["z" + suffix],
+            f"psi{zone}_deg": w["angle" + suffix],
+            f"damage{zone}": w["damage" + suffix],
+            f"repetitions_to_failure{zone}": w["repetitions" + suffix],
+        }
+    formats = {k: ".5f" if k.startswith("z") else ".1f" for k in columns
+               if k.startswith(("z", "psi"))}  # fmt: skip
+    _write_csv(folder / "wires.csv", columns, formats)
     (folder / "fatigue.txt").write_text(r.text)
-
-
-def _crossing_line(st, c, k) -> str:
-    return (
-        f"  {k:5d} {st['interface'][k]}|{st['interface'][k] + 1}"
-        f"{'  line' if st['line'][k] else '      '}  {st['z'][k]:.4f}  {st['angle'][k]:8.1f}"
-        f"  {1e6 * c['slip_amplitude'][k]:12.3f}  {c['peak_force'][k]:10.1f}"
-        f"  {c['friction_amplitude'][k]:9.2f}  {1e-6 * c['peak_pressure'][k]:8.0f}"
-        f"  {1e-6 * c['surface_stress'][k]:9.1f}  {1e-6 * c['ruiz_f2'][k]:12.4g}"
-    )
-
-
-def summary_text(pairs, sections, cycles, c, e, w, ps, curve, layers) -> str:
-    """The report's summary: cycles, ten worst crossings, hot spots, first wires to fail, P–S."""
-    st = pairs.static
-    lines = [
-        f"load cycles (rainflow on the cycle load, ASTM E1049): {len(cycles)} counted, ranges "
-        + ", ".join(f"{r:.4g}×{n:g}" for r, n in zip(cycles.range, cycles.count, strict=True)),
-    ]
-    line = st["line"].astype(bool)
-    point_order = [k for k in np.argsort(-c["ruiz_f2"]) if not line[k]][:10]
-    line_order = [k for k in np.argsort(-c["ruiz_f2"]) if line[k]][:3]
-    for title, order in (
-        ("ten worst crossings by Ruiz's F2 = σ_T τ δ (Ruiz, Boddington & Chen 1984):", point_order),
-        ("worst line contacts (per tributary length) by the same F2:", line_order),
-    ):
-        if not order:
-            continue
-        lines += [title, "  pair  interface  z (m)    angle (°)  slip amp (µm)  P peak (N)  "
-                         "Q amp (N)  p0 (MPa)  σ_T (MPa)  F2 (MPa J/m²)"]  # fmt: skip
-        lines += [_crossing_line(st, c, k) for k in order]
-    s = sections.static
-    lines.append("ten hot spots (largest surface stress range over the history):")
-    lines.append("  element  wire  layer  z (m)    ψ (°)  range (MPa)  mean (MPa)")
-    for k in np.argsort(-e["range"])[:10]:
-        lines.append(
-            f"  {k:7d} {s['wire'][k]:5d} {s['layer'][k]:6d}  {s['z'][k]:.4f} {e['angle'][k]:6.1f}"
-            f"  {1e-6 * e['range'][k]:11.2f}  {1e-6 * e['mean'][k]:10.1f}"
-        )
-    lines.append(
-        f"Miner damage with {curve.name} ({curve.source}) on layers {layers}; first wires to fail:"
-    )
-    order = [k for k in np.argsort(-w["damage"]) if w["damage"][k] > 0][:5]
-    for k in order:
-        lines.append(
-            f"  wire {k:2d} (layer {int(w['layer'][k])}): damage {w['damage'][k]:.3g} per history, "
-            f"{w['repetitions'][k]:.3g} repetitions; largest range {1e-6 * w['range'][k]:.2f} MPa "
-            f"at z = {w['z'][k]:.4f} m, ψ = {w['angle'][k]:.0f}°"
-        )
-    if not order:
-        lines.append("  none: no cycle damages the wires under the curve")
-    if ps is not None:
-        lines.append(
-            f"Poffenberger–Swart at the clamp (x = {1e3 * ps['distance']:.0f} mm): "
-            f"Y_b = {1e3 * ps['Y_b']:.3f} mm peak to peak, K = {1e-9 * ps['K']:.2f} MPa/mm "
-            f"→ σ_a = {1e-6 * ps['sigma_a']:.2f} MPa; model (half the outer wires' largest range "
-            f"at the clamp mouth) {1e-6 * ps['model']:.2f} MPa; ratio {ps['ratio']:.3f}"
-        )
-    return "\n".join(lines) + "\n"

@@ -273,9 +273,10 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
 
 def fatigue_figures(folder, report) -> list[Path]:
     """The fatigue report's figures in ``folder``: a fretting map per interface (initial z against
-    the angle about the axis, colour = Ruiz's F₂ of the worst cycle, grey where the pair stuck
-    throughout) and the surface stress range along every outer wire (with Poffenberger–Swart's
-    amplitude × 2 at the clamp)."""
+    the angle about the axis; pairs that slid coloured by Ruiz's F₂ of the worst cycle, grey where
+    F₂ is zero, pairs stuck throughout in blue; dashed lines bound the clamp zones) and the
+    surface stress range along every outer wire (with Poffenberger–Swart's amplitude × 2 at the
+    clamp where it holds)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -290,21 +291,29 @@ def fatigue_figures(folder, report) -> list[Path]:
     interfaces = np.unique(st["interface"])
     fig, axes = plt.subplots(1, len(interfaces), figsize=(4 * len(interfaces), 5), sharey=True,
                              squeeze=False)  # fmt: skip
-    f2 = 1e-6 * c["ruiz_f2"]
-    positive = f2[f2 > 0]
+    f2, stuck = 1e-6 * c["ruiz_f2"], c["stuck"]
+    positive = f2[(f2 > 0) & ~stuck]
     norm = LogNorm(positive.max() * 1e-4, positive.max()) if len(positive) else None
     sc = None
     for ax, i in zip(axes[0], interfaces, strict=True):
         m = st["interface"] == i
-        stuck, slid = m & (f2 <= 0), m & (f2 > 0)
-        ax.scatter(st["angle"][stuck], 1e3 * st["z"][stuck], s=3, c="0.75", lw=0)
+        held, flat, slid = m & stuck, m & ~stuck & (f2 <= 0), m & ~stuck & (f2 > 0)
+        ax.scatter(st["angle"][held], 1e3 * st["z"][held], s=3, c="tab:blue", lw=0,
+                   label="stuck throughout")  # fmt: skip
+        ax.scatter(st["angle"][flat], 1e3 * st["z"][flat], s=3, c="0.75", lw=0)
         sc = ax.scatter(st["angle"][slid], 1e3 * st["z"][slid], c=f2[slid], s=5, cmap="inferno",
                         norm=norm, lw=0)  # fmt: skip
+        for z in (report.end_zone, report.length - report.end_zone):
+            if 0 < z < report.length:
+                ax.axhline(1e3 * z, color="k", ls="--", lw=0.6)
         ax.set(title=f"interface {i}|{i + 1}", xlabel="angle about the axis (°)", xlim=(-180, 180))
     axes[0, 0].set_ylabel("z (mm)")
+    if stuck.any():
+        axes[0, 0].legend(loc="upper right", fontsize=7, markerscale=3)
     if norm is not None:
         fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
-    fig.suptitle("fretting map: pairs that slid, coloured by F₂ (grey: stuck throughout)")
+    fig.suptitle("fretting map: pairs that slid, coloured by F₂\n(blue: stuck throughout; "
+                 "dashed: clamp zones)", fontsize=10)  # fmt: skip
     paths = [save_figure(fig, folder / "fretting_map.png", None, False)]
 
     s, e = read_history(folder / "wire_sections.h5").static, report.elements
@@ -314,7 +323,7 @@ def fatigue_figures(folder, report) -> list[Path]:
         m = s["wire"] == w
         ax.plot(1e3 * s["z"][m], 1e-6 * e["range"][m], lw=0.6, alpha=0.7)
     ps = report.poffenberger_swart
-    if ps is not None:
+    if ps is not None and ps["holds"]:
         ax.plot(
             [0],
             [2e-6 * ps["sigma_a"]],

@@ -8,6 +8,7 @@ Units: SI, in the comments.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from functools import partial
@@ -113,8 +114,12 @@ class FatigueSettings:
     sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
     sn_b2: float = -0.17
     sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
+    steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, or "none"
     surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
     clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
+    end_zone: float = 0.0  # m, clamp zone at each end; 0: one lay length of the outer layer
+    stuck_slip: float = 1e-9  # m, a pair whose Coulomb slide stays below this stuck throughout
+    breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
 
     def curve(self):
         """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
@@ -130,3 +135,23 @@ class FatigueSettings:
         if self.sn_layers:
             return [int(i) for i in self.sn_layers]
         return [i for i, lay in enumerate(cable.layers) if lay.wire.E < 100e9]
+
+    def curves(self, cable: Cable) -> list:
+        """Per layer (0 = core), its wires' S–N curve, or None (not assessed): ``sn_curve`` on
+        ``layers``, ``steel_sn_curve`` on the other steel layers (E ≥ 100 GPa)."""
+        from .fatigue.sn import SN_CURVES, wire_material
+
+        mine, steel = self.layers(cable), SN_CURVES.get(self.steel_sn_curve)
+        return [
+            self.curve() if i in mine
+            else steel if wire_material(lay.wire.E) == "steel" else None
+            for i, lay in enumerate(cable.layers)
+        ]  # fmt: skip
+
+    def end_zone_length(self, cable: Cable) -> float:
+        """The clamp zone's length at each end (m): ``end_zone``, or one lay length of the outer
+        layer (the core's length 0 for a bare core)."""
+        if self.end_zone > 0:
+            return self.end_zone
+        pitch = cable.layers[-1].pitch
+        return pitch if math.isfinite(pitch) else 0.0

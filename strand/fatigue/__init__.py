@@ -2,14 +2,19 @@
 
 Physics only (numpy): ``stress`` (surface stresses of round wires from their section forces),
 ``fretting`` (per-cycle slip, forces, energy and Ruiz's parameters of contact pairs), ``cycles``
-(rainflow counting), ``sn`` (S–N curves, CIGRE's Safe Border Line, Miner's rule). The run's
+(rainflow counting), ``sn`` (wire S–N curves: CIGRE's Safe Border Lines for aluminium, EN 1992-1-1's
+for steel wire; Miner's rule), ``tn`` (the strand-level T–N curves of DNV-OS-E301 and API RP 2SK),
+``zones`` (free span and clamp zones), ``poffenberger`` (where Poffenberger–Swart holds). The run's
 per-step histories come from ``strand.history``; ``strand.fatigue_report`` puts them together.
 """
 
 from .cycles import Cycles, rainflow_cycles
-from .fretting import CrossingCycles, crossing_cycles, ruiz_parameters
-from .sn import SN_CURVES, SNCurve, miner_damage
+from .fretting import CrossingCycles, crossing_cycles, ruiz_parameters, stuck_throughout
+from .poffenberger import SpanCheck, span_check, span_error
+from .sn import SN_CURVES, SNCurve, miner_damage, wire_material
 from .stress import section_components, section_frames, shear_stress, surface_stress
+from .tn import api_spiral_strand_life, dnv_spiral_rope_life, tension_damage
+from .zones import ZONES, in_clamp_zone
 
 __all__ = [
     "Cycles",
@@ -17,9 +22,19 @@ __all__ = [
     "CrossingCycles",
     "crossing_cycles",
     "ruiz_parameters",
+    "stuck_throughout",
+    "SpanCheck",
+    "span_check",
+    "span_error",
     "SN_CURVES",
     "SNCurve",
     "miner_damage",
+    "wire_material",
+    "api_spiral_strand_life",
+    "dnv_spiral_rope_life",
+    "tension_damage",
+    "ZONES",
+    "in_clamp_zone",
     "section_components",
     "section_frames",
     "shear_stress",

@@ -28,7 +28,7 @@ import numpy.typing as npt
 
 from .cycles import Cycles
 
-__all__ = ["CrossingCycles", "crossing_cycles", "ruiz_parameters"]
+__all__ = ["CrossingCycles", "crossing_cycles", "ruiz_parameters", "stuck_throughout"]
 
 Array = npt.NDArray[np.float64]
 
@@ -81,3 +81,13 @@ def ruiz_parameters(
     tau = np.divide(Q, area, out=np.zeros(np.broadcast(Q, area).shape), where=area > 0)
     f1 = tau * np.asarray(slip_amplitude, float)
     return f1, np.maximum(np.asarray(surface_stress, float), 0.0) * f1
+
+
+def stuck_throughout(sliding: Array, threshold: float) -> npt.NDArray[np.bool_]:
+    """Pairs whose Coulomb slide ``sliding`` (S, P, 3; m, from the first step) never leaves a
+    ball of radius ``threshold`` (m) round its first value: stuck over the whole history, their
+    round-off slides (1e-23 m and less) counted as none."""
+    sliding = np.asarray(sliding, float)
+    if len(sliding) == 0:
+        return np.ones(sliding.shape[1], bool)
+    return np.linalg.norm(sliding - sliding[:1], axis=-1).max(axis=0) < threshold

@@ -18,6 +18,7 @@ from .programme import LoadProgramme
 from .recorders import RunStep
 from .run_result import Start
 from .solver import NewtonOptions
+from .solver.convergence import STALL_AFTER
 
 __all__ = [
     "settings_text",
@@ -56,11 +57,6 @@ def results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
         return path
 
     return on_root(prepare)
-
-
-#: the stall test of strand's runs starts at the 4th iteration (``[steps] stall``; the choice
-#: behind it: ``NewtonOptions.stall_after``, docs/theory.md §6)
-STALL_AFTER = 4
 
 
 def newton_options(case: Case) -> NewtonOptions:

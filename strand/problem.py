@@ -22,6 +22,7 @@ from .pair_results import PairResults
 from .setups.base import TestSetup
 from .setups.saddle import SaddleTest
 from .solver import NewtonOptions, NonlinearProblem
+from .solver.convergence import STALL_AFTER
 
 __all__ = ["StrandProblem"]
 
@@ -35,7 +36,7 @@ class StrandProblem:
     Args:
         geometry: the strand (``build_geometry``).
         contact: contact settings (normal, penalties, friction).
-        options: Newton settings.
+        options: Newton settings (a ``stall_after`` of None takes strand's ``STALL_AFTER``).
         setup: builds the test set-up from the model (default: ``SaddleTest``).
     """
 
@@ -59,7 +60,8 @@ class StrandProblem:
             # 2 of 6 runs of 0.1 m of Cardinal on 3 ranks; 0 of 8 with twice the estimate)
             mumps["mat_mumps_icntl_14"] = 100
         options = options or NewtonOptions()
-        options = replace(options, petsc={**mumps, **options.petsc})
+        stall = STALL_AFTER if options.stall_after is None else options.stall_after
+        options = replace(options, petsc={**mumps, **options.petsc}, stall_after=stall)
         self.solver = NonlinearProblem(
             self.model.beam.residual(),
             self.model.w,

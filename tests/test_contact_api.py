@@ -22,7 +22,7 @@ from strand.contact import (
 )
 from strand.contact.hertz import point_coefficient
 from strand.mesh import beam_space, polyline_mesh
-from strand.solver import NodalLoad, NonlinearProblem
+from strand.solver import NewtonOptions, NodalLoad, NonlinearProblem
 
 R = 1.5e-3  # m, both beams
 E, NU = 200e9, 0.3
@@ -242,3 +242,64 @@ def test_large_sliding_pairs_from_node_pairs_press_then_follow_the_slide():
     assert y == pytest.approx(2 * h, abs=1e-6)
     assert contact.state.force[0] == pytest.approx(k_moved * 2 * gap0, rel=1e-4)
     np.testing.assert_allclose(contact.state.normal[0], [0.0, 0.0, 1.0], atol=1e-4)
+
+
+def deflection_alone(V, node: int, force: float, bcs) -> float:
+    """The vertical displacement (m) of ``node`` of a beam of ``V`` under a vertical ``force``
+    (N) there alone, with Dirichlet conditions ``bcs`` (on a function of its own)."""
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(2 * R, E, NU))
+    load = NodalLoad([node], [[0, 0, force, 0, 0, 0]], 1.0)
+    alone = NonlinearProblem(beam.residual(), w, [bc(w) for bc in bcs], terms=[load])
+    assert alone.solve().converged
+    alone.destroy()
+    return float(w.x.array.reshape(-1, 6)[node, 2])
+
+
+def test_beams_pressed_into_each_other_at_t0_start_with_the_default_newton_options():
+    """Two crossed beams, clamped at their ends, start pressed into each other by a tenth of
+    their radius; the ends of the lower one are then moved (prescribed) up and down. With
+    ``NewtonOptions()`` as they come (no stall test for a problem of one's own), every step
+    converges, and the state kept before the ramp reads each step's values: each beam deflects
+    at its middle as it does alone under the pair's Hertz force P there (within 1e-5), and the
+    overlap less the two deflections is the Hertz approach at P (springs in series)."""
+    overlap = 0.1 * R
+    V, a, b = two_beams([0.0, 1.0, 0.0], -overlap)
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(2 * R, E, NU))
+    lift = fem.Constant(V.mesh, 0.0)
+
+    def supports(ends_a_lift):
+        zero = [lambda u: fem.dirichletbc(np.zeros(6), b[[0, -1]], u.function_space)]
+        ends = [lambda u, c=c: fem.dirichletbc(0.0, 6 * a[[0, -1]] + c, V.sub(c)) for c in
+                (0, 1, 3, 4, 5)]  # fmt: skip
+        ends.append(lambda u: fem.dirichletbc(ends_a_lift, 6 * a[[0, -1]] + 2, V.sub(2)))
+        return zero, ends
+
+    zero_b, ends_a = supports(lift)
+    bcs = [bc(w) for bc in zero_b + ends_a]
+    pairs = candidate_pairs(V, a, b, R, R, reach=1e-4)
+    assert pairs.initial_gap[0] == pytest.approx(-overlap, rel=1e-9)
+    law, _ = hertz_laws(pairs, E, NU, E, NU)
+    contact = contact_terms(pairs, law)
+    state, force = contact.state, contact.state.force  # kept before the ramp
+    assert NewtonOptions().stall_after is None
+    solver = NonlinearProblem(beam.residual(), w, bcs, terms=[contact])
+    for value in (0.0, -50e-6, 50e-6):  # m: the lower beam's ends moved
+        lift.value = value
+        result = solver.solve()
+        assert result.converged, result.residuals
+        solver.commit()
+        P = force[0]
+        assert state is contact.state and P == contact.state.force[0] > 0
+        d_b = deflection_alone(V, b[20], P, zero_b)
+        end = fem.Constant(V.mesh, value)
+        u_a = deflection_alone(V, a[20], -P, supports(end)[1])
+        # each beam carries P as it would alone; the overlap less their deflections is the gap
+        # (to 1e-5 of the overlap: the director normal's own kinematics), at which the law
+        # gives P
+        assert state.gap[0] == pytest.approx(-overlap + d_b - u_a, abs=1e-5 * overlap)
+        assert law.force(state.gap)[0][0] == pytest.approx(P, rel=1e-12)
+        np.testing.assert_allclose(w.x.array.reshape(-1, 6)[[a[20], b[20]], 2], [u_a, d_b],
+                                   rtol=1e-5)  # fmt: skip
+    solver.destroy()

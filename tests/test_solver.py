@@ -239,7 +239,7 @@ def test_line_search_breaks_the_two_cycle_of_full_newton_steps():
     strand's default for its runs) or backtracking (``bt``, ``l2``), converges from there to
     the exact solution u = c in at most 4 iterations. (From much farther off, cp's one secant
     step can stop short: the stall test and the step cut are there for that.)"""
-    options = NewtonOptions(max_it=12, atol=1e-6, rtol=1e-14)
+    options = NewtonOptions(max_it=12, atol=1e-6, rtol=1e-14, stall_after=4)
     c = SPRING_CENTRE
     solver, tip = saturating_tip(replace(options, linesearch="basic"))
     full = solver.solve()

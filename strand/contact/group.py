@@ -10,6 +10,9 @@ small-sliding ``ContactGroup``, the large-sliding ``SlidingGroup``); the base ap
   start), the traction t from the friction law's radial return; residual Sᵀt, tangent
   Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗(∂p/∂q) — unsymmetric in slip.
 
+``state`` (the last evaluation) and ``history`` are the same objects for a group's whole life,
+their arrays updated in place: a reference taken before a load ramp follows it.
+
 History (traction, normal, normal force, and what the subclass keeps) is committed after converged
 steps only, with the friction history of each pair (``FrictionHistory``): the relative tangential
 displacement of its surface points summed over the steps, the part of it that is Coulomb sliding
@@ -35,13 +38,23 @@ Array = npt.NDArray[np.float64]
 @dataclass
 class ContactState:
     """Per-pair results of the last evaluation: gap g (m), normal force p (N), traction t (N),
-    current normal n, whether the pair slips."""
+    current normal n, whether the pair slips. A group keeps one state and updates its arrays in
+    place at every evaluation (``fill``)."""
 
     gap: Array
     force: Array
     traction: Array
     normal: Array
     slipping: npt.NDArray[np.bool_]
+
+    def fill(self, gap, force, traction, normal, slipping) -> None:
+        """Put new values into these arrays, in place: a reference to the state, or to one of
+        its arrays, kept before a load ramp reads the values of the last evaluation."""
+        self.gap[...] = gap
+        self.force[...] = force
+        self.traction[...] = traction
+        self.normal[...] = normal
+        self.slipping[...] = slipping
 
 
 @dataclass
@@ -161,7 +174,7 @@ class PairGroup:
                 K[:, :m, :] += ft.tangent
             traction, slipping = ft.traction, ft.slipping
             self._friction = (ft.slip, ft.stiffness)
-        self.state = ContactState(kin.gap, p, traction, kin.normal, slipping)
+        self.state.fill(kin.gap, p, traction, kin.normal, slipping)
         self._last = W
         return f, K
 
@@ -175,8 +188,10 @@ class PairGroup:
             sliding, work = friction_increment(
                 slip, k_t, self.state.traction, self._t_old, self._n_old
             )
-            h = self.history
-            self.history = FrictionHistory(h.slip + slip, h.sliding + sliding, h.work + work)
+            h = self.history  # in place, as the state
+            h.slip += slip
+            h.sliding += sliding
+            h.work += work
             self._friction = None  # counted once
         self._t_old = tangential_part(self.state.traction, n)  # onto the new tangent plane
         self._n_old = n.copy()
@@ -209,9 +224,9 @@ class PairGroup:
         nodal unknowns (n_blocks, 6) of that state."""
         a = {k: np.array(v, copy=True) for k, v in arrays.items()}
         self._t_old, self._n_old, self._p_old = a["t_old"], a["n_old"], a["p_old"]
-        self.history = FrictionHistory(a["slip"], a["sliding"], a["work"])
-        self.state = ContactState(a["gap"], a["force"], a["traction"], a["normal"],
-                                  a["slipping"].astype(bool))  # fmt: skip
+        h = self.history
+        h.slip[...], h.sliding[...], h.work[...] = a["slip"], a["sliding"], a["work"]
+        self.state.fill(a["gap"], a["force"], a["traction"], a["normal"], a["slipping"])
         self._restore_kinematics_history(a)
         self._last, self._friction = None, None
         self._commit_kinematics(w[self.stencils])

@@ -10,7 +10,11 @@ import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
 
-__all__ = ["NewtonOptions", "NewtonResult", "NewtonConvergence"]
+__all__ = ["NewtonOptions", "NewtonResult", "NewtonConvergence", "STALL_AFTER"]
+
+#: the stall test's start in strand's own runs (``[steps] stall``, ``strand.StrandProblem``):
+#: the 4th iteration (``NewtonOptions.stall_after``)
+STALL_AFTER = 4
 
 
 @dataclass
@@ -37,8 +41,11 @@ class NewtonOptions:
     #: or diverging. In the default Cardinal case with full steps, all such solves but one
     #: ran on to ``max_it`` without converging; the one (leg 3, 8 iterations) recovered by
     #: chance after three iterations without progress, and cutting it moves the results by a
-    #: change of load path (docs/theory.md §6). 0 switches it off.
-    stall_after: int = 4
+    #: change of load path (docs/theory.md §6). 0 switches it off; None (the default) leaves
+    #: it off for a ``NonlinearProblem`` of one's own (a first step that pushes an initial
+    #: penetration out may take several slow iterations) and gives a ``strand.StrandProblem``
+    #: strand's choice, ``STALL_AFTER``.
+    stall_after: int | None = None
     stall_factor: float = 0.5
     #: convergence in physical terms: from the first iteration on, a solve also ends when no
     #: node is out of balance by more than ``force_tol`` (N) in force and ``moment_tol`` (N m)
@@ -141,7 +148,7 @@ class NewtonConvergence:
             if snorm < o.stol * xnorm:
                 return reason.CONVERGED_SNORM_RELATIVE
             if (
-                0 < o.stall_after <= its
+                0 < (o.stall_after or 0) <= its
                 and fnorm > o.stall_factor * r[its - 2]
                 and fnorm > o.floor_factor * max(o.atol, o.rtol * r[0])
             ):

@@ -1,0 +1,269 @@
+"""Pages generated at build time into ``docs/_generated/``: the settings reference, read from the
+settings dataclasses, and the demos as tutorials, converted by jupytext without running them.
+
+Nothing here is hand-copied: a setting added to a settings class, or a demo added to ``demos/``,
+appears in the next build.
+"""
+
+from __future__ import annotations
+
+import inspect
+import io
+import re
+import tokenize
+from dataclasses import MISSING, fields
+from pathlib import Path
+
+ROOT = Path(__file__).parents[2]
+GENERATED = "_generated"
+
+
+# --- settings reference ---------------------------------------------------------------------
+
+
+def _attributes(cls) -> dict[str, str]:
+    """The ``Attributes:`` section of ``cls``'s docstring (Google style), by name."""
+    doc = inspect.getdoc(cls) or ""
+    if "Attributes:" not in doc:
+        return {}
+    out: dict[str, str] = {}
+    name = None
+    for line in doc.split("Attributes:", 1)[1].splitlines():
+        if line and not line.startswith(" "):
+            break  # the next section
+        m = re.match(r"^ {4}(\w+(?:, \w+)*):\s+(.*)$", line)
+        if m:
+            name = m.group(1)
+            out[name] = m.group(2)
+        elif name and line.strip():
+            out[name] += " " + line.strip()
+    for names in [k for k in out if "," in k]:  # "a, b: ..." documents both
+        for n in names.split(","):
+            out[n.strip()] = out[names]
+    return out
+
+
+def _comments(cls) -> dict[str, str]:
+    """Each field's comment in ``cls``'s source: the comment on its line and the comment lines
+    right under it, indented further."""
+    out: dict[str, str] = {}
+    current = last = None
+    source = inspect.getsource(cls)
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.NAME and tok.start[1] == 4 and current is None:
+            current = tok.string
+        elif tok.type == tokenize.COMMENT and current:
+            out[current] = tok.string.lstrip("# ")
+        elif tok.type == tokenize.NEWLINE:
+            last, current = current, None
+        elif tok.type == tokenize.COMMENT and tok.start[1] > 4 and last in out:
+            out[last] += " " + tok.string.lstrip("# ")
+        elif tok.type not in (tokenize.NL, tokenize.COMMENT):
+            last = None if tok.type != tokenize.NAME else last
+    return out
+
+
+def _template_comments(doc: str) -> dict[tuple[str, str], str]:
+    """The comments of the commented case file in ``strand.case``'s docstring, by (section, key):
+    the comment on the key's line and the comment lines indented under it."""
+    out: dict[tuple[str, str], str] = {}
+    section, key = "", None
+    for line in doc.splitlines():
+        s = line.strip()
+        if m := re.match(r"^\[(\w+)\]$", s):
+            section, key = m.group(1), None
+        elif m := re.match(r"^(\w+)\s*=\s*[^#]*#\s*(.*)$", s):
+            key = m.group(1)
+            out[(section, key)] = m.group(2)
+        elif re.match(r"^\w+\s*=", s):
+            key = None
+        elif s.startswith("#") and key and line.startswith("    " * 2):
+            out[(section, key)] += " " + s.lstrip("# ")
+    return out
+
+
+def _default(f) -> str:
+    if f.default is not MISSING:
+        value = f.default
+    elif f.default_factory is not MISSING:
+        value = f.default_factory()
+    else:
+        return "required"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, tuple):
+        return "[" + ", ".join(repr(v) for v in value) + "]"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, float):
+        return re.sub(r"e([+-])0*(\d)", lambda m: "e" + m[1].strip("+") + m[2], f"{value:.6g}")
+    return repr(value)
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def _longer(template: str, comment: str) -> str:
+    """The fuller of a setting's two comments (the case template's and the class's); a template
+    comment that runs on into the next key's is left out."""
+    if template.endswith((",", " with")):
+        template = ""
+    return max(template, comment, key=len) or "—"
+
+
+def _table(section: str, classes, template: dict, skip=("by_kind",)) -> list[str]:
+    lines = ["| setting | default | meaning |", "|---|---|---|"]
+    for cls, kind in classes:
+        attributes, comments = _attributes(cls), _comments(cls)
+        for f in fields(cls):
+            if f.name in skip:
+                continue
+            text = attributes.get(f.name) or _longer(
+                template.get((section, f.name), ""), comments.get(f.name, "")
+            )
+            if kind:
+                text = f"*{kind} only.* {text}"
+            lines.append(f"| `{f.name}` | `{_cell(_default(f))}` | {_cell(text)} |")
+    return lines
+
+
+def settings_reference() -> str:
+    """The settings reference page (MyST), from ``strand.case.SECTIONS``, the registered set-up
+    kinds' own settings and the cable's fields."""
+    import strand.case
+    from strand import cable, kinds
+    from strand.settings import KIND_SECTIONS
+
+    template = _template_comments(strand.case.__doc__)
+    out = [
+        "# Settings reference",
+        "",
+        "Every setting of a case file, with its default and meaning, generated when the docs are",
+        "built from the settings classes (their fields, defaults, `Attributes:` docstrings and",
+        "comments). SI units. A case file lists only what it changes; `strand run case.toml --set",
+        "section.key=value` changes one from the command line. Unknown keys and bad values stop",
+        "the run before anything is computed, naming the file and the key.",
+        "",
+        "## `cable`",
+        "",
+        '`cable = "cardinal"` (the built-in Cardinal ACSR 54/7, the default), a cable file (TOML,',
+        "relative to the case file), or a `[cable]` table with `name`, a `[cable.core]` table and",
+        "one `[[cable.layer]]` table per layer of helical wires, innermost first:",
+        "",
+        "| key | in | meaning |",
+        "|---|---|---|",
+    ]
+    comments = {**_comments(cable.Wire), **_comments(cable.Layer)}
+    names = {"diameter": "wire diameter", "E": "Young's modulus", "nu": "Poisson's ratio",
+             "wires": "number of wires", "lay_angle": "lay angle", "lay": "lay hand"}  # fmt: skip
+    keys = [f.name for f in fields(cable.Wire)] + [f.name for f in fields(cable.Layer)]
+    for key in [k for k in keys if k in cable._CORE_KEYS | cable._LAYER_KEYS]:
+        where = ", ".join(
+            name for name, keys in (("core", cable._CORE_KEYS), ("layer", cable._LAYER_KEYS))
+            if key in keys
+        )  # fmt: skip
+        text = ", ".join(t for t in (names.get(key), comments.get(key)) if t and t != "-")
+        out.append(f"| `{key}` | {where} | {_cell(text)} |")
+    optional = [f.name for f in fields(cable.Wire) if _default(f) != "required"]
+    out += ["", f"Every key is required but {', '.join(f'`{k}`' for k in optional)}."]
+    for section, cls in strand.case.SECTIONS.items():
+        out += ["", f"## `[{section}]`", ""]
+        doc = (inspect.getdoc(cls) or "").split("\n\n")[0]
+        if doc and "Attributes:" not in doc and not doc.startswith(f"{cls.__name__}("):
+            out += [doc, ""]
+        classes = [(cls, "")]
+        if section in KIND_SECTIONS:
+            own = KIND_SECTIONS[section]
+            classes += [(getattr(k, own), f'`kind = "{k.name}"`') for k in kinds.registered()]
+        out += _table(section, classes, template)
+    return "\n".join(out) + "\n"
+
+
+# --- the columns of the set-up kinds' tables ---------------------------------------------------
+
+
+def _record_rows(record_type) -> list[str]:
+    from strand.setups.base import columns
+
+    rows = []
+    for name, f in zip(columns(record_type), fields(record_type), strict=True):
+        unit = f.metadata.get("unit", "").replace("_per_", "/").replace("Nm", "N m")
+        doc = f.metadata.get("doc", "") or f.name.replace("_", " ")
+        rows.append(f"| `{name}` | {unit or '–'} | {_cell(doc)} |")
+    return rows
+
+
+def kind_columns() -> str:
+    """Per registered set-up kind, the columns its state and bending records give to
+    ``steps.csv`` and ``moment_curvature.csv`` (from the records' field metadata)."""
+    from strand import kinds
+    from strand.case import load_case
+
+    out = []
+    for kind in kinds.registered():
+        case = load_case(settings=[f'load.kind="{kind.name}"'])
+        setup = kind.setup(case).func
+        out += [
+            f'**`kind = "{kind.name}"`** (`{setup.__module__}.{setup.__name__}`):',
+            "",
+            "| `steps.csv` column | unit | meaning |",
+            "|---|---|---|",
+            *_record_rows(setup.state_type),
+            "",
+            f"`moment_curvature.csv`, at every step of the cycle: "
+            f"{_cell(inspect.getdoc(setup.bending_type) or '')}",
+            "",
+            "| `moment_curvature.csv` column | unit | meaning |",
+            "|---|---|---|",
+            "| `step` | – | the step's number (as in `steps.csv`) |",
+            *_record_rows(setup.bending_type),
+            "",
+        ]
+    return "\n".join(out)
+
+
+# --- tutorials from the demos -----------------------------------------------------------------
+
+
+def demo_page(path: Path) -> str:
+    """A demo (jupytext py:light) as a MyST page: its markdown cells as text, its code cells as
+    code blocks, not executed; a line under its title says how to run it."""
+    import jupytext
+
+    nb = jupytext.read(path)
+    nb.metadata = {}
+    text = jupytext.writes(nb, fmt="md")
+    text = re.sub(r"\A---\n.*?\n---\n+", "", text, flags=re.S)  # jupytext's header
+    run = (
+        f"\n*This tutorial is `demos/{path.name}`, shown here without its outputs. Run it "
+        f"with `.venv/bin/python demos/{path.name}`: it checks itself and leaves its figures "
+        "in `results/`. The tests run it too (`tests/test_demos.py`).*\n"
+    )
+    title, _, rest = text.partition("\n")
+    return f"{title}\n{run}{rest}"
+
+
+def _write(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` unless it holds it already (keeps Sphinx's incremental build)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+def generate(app) -> None:
+    out = Path(app.srcdir) / GENERATED
+    _write(out / ".gitignore", "*\n")
+    _write(out / "settings.md", settings_reference())
+    _write(out / "kind_columns.inc", kind_columns())
+    demos = sorted((ROOT / "demos").glob("demo_*.py"))
+    for demo in demos:
+        _write(out / "tutorials" / f"{demo.stem}.md", demo_page(demo))
+    for stale in (out / "tutorials").glob("*.md"):
+        if not (ROOT / "demos" / f"{stale.stem}.py").exists():
+            stale.unlink()
+
+
+def setup(app):
+    app.connect("builder-inited", generate)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -48,8 +48,11 @@ class ContactSettings:
         reach: large sliding only: sliding distance reserved either side of each initial pair,
             m (its window holds every segment of the two wires within reach).
         same_layer: contact between neighbouring wires of one layer (``strand.same_layer``):
-            "off", "nominal" (each layer's gaps from its helices, clipped at touching) or
-            "packed" (neighbours touching, the spare circumference in one gap); small sliding.
+            "off", "nominal" (each layer's gaps from its helices, clipped at touching),
+            "packed" (neighbours touching, the spare circumference in one gap, as stranding
+            leaves a layer whose nominal gaps are of the order of its wires' diameter
+            tolerance), or "auto" (default): "packed" in small sliding, "off" in large sliding
+            (same-layer pairs are built for small sliding only). Small sliding.
         slip: the friction's slip measure between layers (``strand.contact.element``):
             "surface" (the relative motion of the two surface points in contact: a wire rolls on
             its neighbour without slip) or "centreline" (the seed paper's: the motion of the
@@ -64,7 +67,7 @@ class ContactSettings:
     friction: bool = True
     model: str = "small"
     reach: float = 1e-3
-    same_layer: str = "off"
+    same_layer: str = "auto"
     slip: str = "surface"
 
     def __post_init__(self):
@@ -79,9 +82,12 @@ class ContactSettings:
             )
         if self.model not in ("small", "large"):
             raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
+        if self.same_layer == "auto":
+            object.__setattr__(self, "same_layer", "packed" if self.model == "small" else "off")
         if self.same_layer not in SAME_LAYER:
             raise CableError(
-                f"contact same_layer {self.same_layer!r} is unknown; choose {', '.join(SAME_LAYER)}"
+                f"contact same_layer {self.same_layer!r} is unknown; choose auto, "
+                f"{', '.join(SAME_LAYER)}"
             )
         if self.same_layer != "off" and self.model != "small":
             raise CableError(

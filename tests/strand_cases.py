@@ -32,6 +32,8 @@ lay_angle = 6.06
 lay = "S"
 friction = 0.5
 
+[contact]
+same_layer = "off"  # crossings only: the runs compared across ranks and restarts
 [mesh]
 length = 0.1
 [load]

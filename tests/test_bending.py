@@ -67,7 +67,7 @@ def test_the_moment_is_uniform_and_equals_the_end_couples():
     force equals the tension (friction on, layers partly slipping at the larger curvature).
     Section cuts take each cut element's midpoint forces (one-point elements), so they carry an
     error of the wires' shear force × (distance to the midpoint ≤ h/2): measured 0.35 % here."""
-    for zb, problem in bent(nineteen_wire(), ContactSettings(), [0.01, 0.1]):
+    for zb, problem in bent(nineteen_wire(), ContactSettings(same_layer="off"), [0.01, 0.1]):
         slipping = problem.pair_results().slipping.mean()
         M = zb.moment_zone_middle
         print(zb)
@@ -93,7 +93,15 @@ def test_frictionless_slope_is_the_wires_own_bending():
     length), and so does a higher tension (10 kN: 0.90; the wires slip sideways towards shorter
     paths, which intra-layer contacts, not modelled, would stop)."""
     cable = nineteen_wire()
-    zb, _ = next(bent(cable, ContactSettings(normal="director", friction=False), [0.05], 0.9, 1e3))
+    zb, _ = next(
+        bent(
+            cable,
+            ContactSettings(same_layer="off", normal="director", friction=False),
+            [0.05],
+            0.9,
+            1e3,
+        )
+    )
     slope = zb.moment_zone_middle / zb.curvature
     assert slope == pytest.approx(ei_min(cable, "COSTELLO"), rel=0.05)
     assert np.ptp(zb.section_moments) < 5e-3 * zb.moment_zone_middle
@@ -106,11 +114,11 @@ def test_full_stick_reaches_the_plane_section_stiffness_on_a_line_contact():
     cable = seven_wire(friction=5.0)
     _, ei_max = bending_stiffness_bounds(cable)
     stiff = [zb.moment_zone_middle / zb.curvature
-             for zb, _ in bent(cable, ContactSettings(compliance="penalty", g_lim=5e-8),
+             for zb, _ in bent(cable, ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8),
                                [0.002, 0.005])]  # fmt: skip
     assert stiff[0] == pytest.approx(ei_max, rel=0.1), (stiff, ei_max)
     assert stiff[1] == pytest.approx(stiff[0], rel=1e-3)  # linear: no slip
-    soft = next(bent(cable, ContactSettings(compliance="penalty"), [0.002]))[0]
+    soft = next(bent(cable, ContactSettings(same_layer="off", compliance="penalty"), [0.002]))[0]
     assert soft.moment_zone_middle / soft.curvature < 0.8 * stiff[0]
 
 
@@ -125,9 +133,9 @@ def test_full_stick_with_crossings_is_limited_by_the_beams_not_the_contacts():
     cable = nineteen_wire(friction=5.0)
     _, ei_max = bending_stiffness_bounds(cable)
     slopes = []
-    for contact in (ContactSettings(compliance="penalty", g_lim=5e-8),
-                    ContactSettings(compliance="penalty", g_lim=5e-9),
-                    ContactSettings(compliance="penalty", g_lim=5e-8, k_point=5e9, k_line=5e11)):  # fmt: skip
+    for contact in (ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8),
+                    ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-9),
+                    ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8, k_point=5e9, k_line=5e11)):  # fmt: skip
         zb = next(bent(cable, contact, [0.002]))[0]
         slopes.append(zb.moment_zone_middle / zb.curvature)
     print(slopes, ei_max)
@@ -146,7 +154,7 @@ def test_in_full_stick_the_wires_roll_on_their_ties_as_the_estimate_says():
     estimate leaves at nearly zero, is not."""
     cable = nineteen_wire(friction=5.0)
     base = []
-    contact = ContactSettings(compliance="penalty", g_lim=5e-8)
+    contact = ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8)
     zb, problem = next(bent(cable, contact, [0.002], tensioned=base))
     assert problem.pair_results().slipping.sum() == 0
     law = StickSlipLaw(cable, 10e3)
@@ -180,7 +188,7 @@ def test_with_the_spin_held_full_stick_nears_plane_sections(monkeypatch):
     monkeypatch.setattr(strand.model, "layer_section", stiff_torsion)
     cable = nineteen_wire(friction=5.0)
     base = []
-    contact = ContactSettings(compliance="penalty", g_lim=5e-8)
+    contact = ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8)
     zb, problem = next(bent(cable, contact, [0.002], tensioned=base))
     assert problem.pair_results().slipping.sum() == 0
     law = StickSlipLaw(cable, 10e3)

@@ -383,7 +383,7 @@ def test_centreline_slip_is_blind_to_spin_and_sees_rolling():
 def test_helix_on_core_line_load():
     """Contact line load of a tensioned helix on its core: X = T sin²α / r (docs/theory.md §5.6)."""
     geometry = seven_wire(lay_angle=12.0)
-    problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-4))
+    problem = StrandProblem(geometry, ContactSettings(same_layer="off"), NewtonOptions(atol=1e-4))
     problem.setup.set_tension(20e3)
     assert problem.solver.solve().converged
     layer = geometry.cable.layers[1]
@@ -412,7 +412,7 @@ def test_newton_converges_quadratically_on_a_seven_wire_strand(normal):
     geometry = seven_wire()
     iterates = []
     options = NewtonOptions(atol=1e-12, rtol=1e-16, stol=0.0, max_it=6)
-    problem = StrandProblem(geometry, ContactSettings(normal=normal), options)
+    problem = StrandProblem(geometry, ContactSettings(same_layer="off", normal=normal), options)
     snes = problem.solver.solver
     problem.solver.monitor = lambda i, r: iterates.append(snes.getSolution().array_r.copy())
     histories = []
@@ -442,7 +442,9 @@ def test_gap_consistency_on_a_bent_strand(normal):
     near the pair (two cells either side of each node) minus the radii.
     """
     geometry = nineteen_wire()
-    problem = StrandProblem(geometry, ContactSettings(normal=normal), NewtonOptions(atol=1e-4))
+    problem = StrandProblem(
+        geometry, ContactSettings(same_layer="off", normal=normal), NewtonOptions(atol=1e-4)
+    )
     stepper = LoadStepper(problem.solver, 10e3, 1e3)
     stepper.ramp(problem.setup.set_tension, 0.0, 20e3)
     stepper.step = 250.0

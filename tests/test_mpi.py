@@ -137,8 +137,13 @@ def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
 @needs_mpirun
 @pytest.mark.slow
 def test_a_cardinal_piece_with_friction_is_the_same_on_1_2_and_3_ranks(tmp_path):
-    case = ["--set", "mesh.length=0.1", "--set", "load.lateral=1000.0", "--set",
-            "steps.lateral=250.0", "--set", "steps.lateral_max=250.0"]  # fmt: skip
+    """Crossings only: with the default same-layer contact (packed layers) the touching rings
+    leave soft modes, and the ranks agree to the balance tolerance, not to round-off (measured
+    1.6e-6 in deflection on this piece); ``test_same_layer_pairs_are_the_same_on_1_and_2_ranks``
+    compares same-layer pairs at a tight tolerance."""
+    case = ["cardinal", "--set", "mesh.length=0.1", "--set", "load.lateral=1000.0", "--set",
+            "steps.lateral=250.0", "--set", "steps.lateral_max=250.0", "--set",
+            'contact.same_layer="off"']  # fmt: skip
     out = _run_and_compare(tmp_path, case, tag="cardinal")
     mk = np.loadtxt(out[1] / "moment_curvature.csv", delimiter=",", skiprows=1)
     slipped = np.loadtxt(out[1] / "slip.csv", delimiter=",", skiprows=1)[:, 2:]
@@ -151,7 +156,7 @@ def test_mesh_and_bad_input_speak_once_under_mpirun(tmp_path):
                           str(tmp_path / "mesh")], tmp_path)  # fmt: skip
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stdout.count("interface  type") == 1 and "2 MPI ranks" in done.stdout
-    bad = strand_run(2, ["run", "--set", "mesh.length=-1"], tmp_path)
+    bad = strand_run(2, ["run", "cardinal", "--set", "mesh.length=-1"], tmp_path)
     assert bad.returncode == 2
     lines = [line for line in bad.stderr.splitlines() if line.strip()]
     assert len(lines) == 1 and lines[0].startswith("strand: error:"), bad.stderr
@@ -159,7 +164,8 @@ def test_mesh_and_bad_input_speak_once_under_mpirun(tmp_path):
     other = tmp_path / "other"
     other.mkdir()
     (other / "notes.txt").write_text("mine")
-    refused = strand_run(2, ["run", "--set", "mesh.length=0.05", "--out", str(other)], tmp_path)
+    refused = strand_run(2, ["run", "cardinal", "--set", "mesh.length=0.05", "--out", str(other)],
+                         tmp_path)  # fmt: skip
     assert refused.returncode == 2 and refused.stderr.count("strand: error:") == 1
     assert sorted(p.name for p in other.iterdir()) == ["notes.txt"]
 

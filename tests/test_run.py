@@ -123,7 +123,9 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
     from strand.problem import StrandProblem
     from strand.solver import LoadStepper, NewtonOptions
 
-    case = case_from_dict({"contact": {"compliance": "penalty", "k_point": 5e8, "k_line": 5e10}})
+    case = case_from_dict(
+        {"contact": {"compliance": "penalty", "k_point": 5e8, "k_line": 5e10, "same_layer": "off"}}
+    )
     geometry = build_geometry(case.cable, 0.2, 4e-3)
     problem = StrandProblem(geometry, case.contact, NewtonOptions(atol=1e-2))
     LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)

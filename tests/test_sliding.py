@@ -87,7 +87,9 @@ def test_large_and_small_sliding_agree_when_sliding_is_small():
     results = {}
     for model in ("small", "large"):
         problem = StrandProblem(
-            geometry, ContactSettings(model=model), NewtonOptions(atol=1e-2, max_it=15)
+            geometry,
+            ContactSettings(same_layer="off", model=model),
+            NewtonOptions(atol=1e-2, max_it=15),
         )
         LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
         u_tension = problem.setup.end_displacement()
@@ -182,7 +184,9 @@ def test_large_sliding_tension_on_a_nineteen_wire_strand():
     ends, histories = {}, {}
     for model in ("small", "large"):
         problem = StrandProblem(
-            geometry, ContactSettings(model=model), NewtonOptions(atol=1e-2, max_it=12)
+            geometry,
+            ContactSettings(same_layer="off", model=model),
+            NewtonOptions(atol=1e-2, max_it=12),
         )
         stepper = LoadStepper(problem.solver, 10e3, 100.0)
         stepper.ramp(problem.setup.set_tension, 0.0, 40e3)

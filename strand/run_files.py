@@ -26,20 +26,23 @@ OUTPUTS = {
     "axial_forces.csv": "the axial force (N) of every element at every step, with its wire, "
     "layer, height z (m) and angle",
     "moment_curvature.csv": "the set-up's section measures (bending moment, curvature, axial "
-    "sum) at every step",
-    "slip.csv": "per interface, the share of contact pairs slipping at every cycle step",
+    "sum) at every step of the cycle",
+    "slip.csv": "per interface, the share of contact pairs slipping in the measuring zone, at "
+    "every step",
     "fields.xdmf": "field time series for ParaView (with fields.h5): displacement, rotation, "
     "section forces, wire and layer ids; time t = k to k + 1 is stage k of steps.csv",
     "fields.h5": "the data of fields.xdmf",
     "fields.bp": "the same fields as VTX (ADIOS2), a folder: ParaView",
     "contact_pairs.h5": "every contact pair's history: gap, normal force, traction, slip",
     "contact_points.xdmf": "the contact pairs' history as points, for ParaView",
-    "wire_sections.h5": "every element's section forces and surface stresses at every step",
+    "wire_sections.h5": "every element's section forces (axial force, bending moments, torque) "
+    "and spin, at the tensioned state and every cycle step",
     "checkpoint.h5": "the last converged state: `strand run <case> --restart checkpoint.h5`",
     "tensioned.h5": "the state after tension, before the cycle (a restart point)",
     "fatigue.txt": "the fatigue report: stress ranges, S-N damage, fretting",
     "crossings.csv": "fatigue: per contact pair, the worst cycle's slip amplitude and forces",
-    "wire_stresses.csv": "fatigue: per element, the surface point of largest stress range",
+    "wire_stresses.csv": "fatigue: per element, the surface stresses at its point of largest "
+    "stress range (range, mean, peak) and their damage",
     "wires.csv": "fatigue: per wire, the largest stress range and its damage",
     "load_deflection.png": "figure: load against deflection over the cycle",
     "moment_curvature.png": "figure: bending moment against curvature",

@@ -14,6 +14,7 @@ from strand.contact import (
     PenaltyLaw,
     beam_nodes,
     candidate_pairs,
+    candidate_stencils,
     contact_terms,
     hertz_laws,
     locate_nodes,
@@ -73,6 +74,29 @@ def test_candidate_pairs_of_parallel_beams_cover_the_contact_line():
     np.testing.assert_allclose(pairs.initial_gap, 0.0, atol=1e-15)
     with pytest.raises(ValueError, match="parallel"):
         node_pairs(V, pairs.a, pairs.b, R, R)  # as crossings: no normal t_a × t_b
+
+
+def test_candidate_stencils_on_the_input_arrays_are_the_pairs_of_the_mesh():
+    """The pairs found on a mesh's input arrays before it is built (what a partitioner is given)
+    are those ``candidate_pairs`` finds on its space: the same nodes in the same roles, at the
+    same positions, for crossings and line pairs; a per-pair initial gap follows its pair."""
+    n, n_b = 20, 13
+    s, t = np.linspace(-0.05, 0.05, n + 1), np.linspace(-0.04, 0.05, n_b + 1)
+    for direction, line in (([0.0, 1.0, 0.0], False), ([1.0, 0.0, 0.0], True)):
+        pts = np.vstack([s[:, None] * [1.0, 0, 0], t[:, None] * direction + [0, 0, 2 * R]])
+        cells = np.vstack([np.c_[0:n, 1 : n + 1], n + 1 + np.c_[0:n_b, 1 : n_b + 1]])
+        V = beam_space(polyline_mesh(MPI.COMM_WORLD, pts, cells))
+        a, b = locate_nodes(V, pts[: n + 1]), locate_nodes(V, pts[n + 1 :])
+        reach = 1e-6 if line else 1e-3  # no node of b at the crossing
+        rows = candidate_stencils(pts, cells, range(n + 1), range(n + 1, n + n_b + 2), R, R,
+                                  reach, line)  # fmt: skip
+        gaps = -1e-6 * np.arange(1, len(rows) + 1)
+        pairs = candidate_pairs(V, a, b, R, R, reach, line=line, initial_gap=gaps)
+        assert len(rows) == len(pairs) == (n_b + 1 if line else 1)
+        x = V.tabulate_dof_coordinates()
+        np.testing.assert_array_equal(x[pairs.nodes], pts[rows])
+        np.testing.assert_array_equal(pairs.positions, pts[rows])
+        np.testing.assert_array_equal(pairs.initial_gap, gaps[pairs.index])
 
 
 def test_bad_pairs_are_refused_in_one_line():

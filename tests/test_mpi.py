@@ -8,6 +8,7 @@ oversubscribes the 2 cores of CI without complaint)."""
 from __future__ import annotations
 
 import csv
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -203,7 +204,11 @@ def test_owned_rows_refuses_a_stencil_missing_on_its_anchors_rank():
 
 ROOT = Path(__file__).parents[1]
 SERIAL_ONLY = [
-    *sorted(p for p in (ROOT / "demos").glob("demo_*.py") if p.stem != "demo_strand_bending"),
+    *sorted(
+        p
+        for p in (ROOT / "demos").glob("demo_*.py")
+        if p.stem not in ("demo_strand_bending", "demo_crossed_beams")  # these run on N ranks
+    ),
     ROOT / "benchmarks" / "mesh_build.py",
 ]
 
@@ -218,3 +223,92 @@ def test_serial_scripts_refuse_mpirun_in_one_line(script, tmp_path):
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert done.returncode == 2 and len(lines) == 1, done.stderr[-2000:]
     assert "start it without mpirun" in lines[0] and not list(tmp_path.iterdir())
+
+
+def _numbers(text: str) -> list[float]:
+    return [float(v) for v in re.findall(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?", text)]
+
+
+@needs_mpirun
+def test_crossed_beams_demo_on_2_ranks_prints_the_serial_result(tmp_path):
+    """The contact API's demo (two crossed beams, pressed, then sheared to and fro) on 2 ranks:
+    beam a on one, beam b on the other, the pair whole on the first through the partitioner's
+    ghosts; it passes its own checks (equilibrium, the closed-form loop) and prints the serial
+    run's numbers (pressed force and gap, stiffness, error, step count, the loop's sum)."""
+    demo = ROOT / "demos" / "demo_crossed_beams.py"
+    out = {}
+    for ranks in (1, 2):
+        cwd = tmp_path / f"n{ranks}"
+        cwd.mkdir()
+        cmd = [sys.executable, str(demo)]
+        cmd = [str(MPIRUN), "-n", "2", *cmd] if ranks > 1 else cmd
+        done = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        out[ranks] = done.stdout
+    assert out[2].count("pressed:") == 1  # printed once
+    serial, parallel = _numbers(out[1]), _numbers(out[2])
+    assert len(serial) == len(parallel) >= 5
+    np.testing.assert_allclose(parallel, serial, rtol=1e-8)
+
+
+COLLECTIVE_API = """
+import strand
+import numpy as np
+from mpi4py import MPI
+from strand.contact import ContactError, candidate_pairs, locate_nodes
+from strand.mesh import beam_space, polyline_mesh
+from strand.solver import NodalLoad, NonlinearProblem
+from forms import CircularSection, ReissnerBeam
+from dolfinx import fem
+
+comm = MPI.COMM_WORLD
+out = open(f"rank{comm.rank}.txt", "w")
+say = lambda *words: print(*words, file=out, flush=True)
+n, r = 16, 1e-3
+s = np.linspace(0.0, 0.1, n + 1)
+x_a, x_b = s[:, None] * [1.0, 0, 0], (s - 0.05)[:, None] * [0, 1.0, 0] + [0.05, 0, 2 * r]
+cells = np.vstack([np.c_[0:n, 1 : n + 1], np.c_[0:n, 1 : n + 1] + n + 1])
+V = beam_space(polyline_mesh(comm, np.vstack([x_a, x_b]), cells))
+a, b = locate_nodes(V, x_a), locate_nodes(V, x_b)
+owned = np.count_nonzero(np.concatenate([a, b]) < V.dofmap.index_map.size_local)
+say("located", comm.allreduce(owned))
+try:
+    locate_nodes(V, [0.5, 0.0, 0.0])
+except ValueError as e:
+    say("absent:", e)
+try:
+    candidate_pairs(V, a, b, r, r, 1e-4)
+except ContactError as e:
+    say("split:", e)
+# one beam of 2n cells, cut between the ranks: the node at the cut is a ghost on one of them
+x = np.linspace(0.0, 0.2, 2 * n + 1)[:, None] * [1.0, 0, 0]
+V = beam_space(polyline_mesh(comm, x, np.c_[0 : 2 * n, 1 : 2 * n + 1]))
+nodes = locate_nodes(V, x)
+say("ghosts", comm.allreduce(int(np.count_nonzero(nodes >= V.dofmap.index_map.size_local))))
+w = fem.Function(V)
+load = NodalLoad(nodes, np.tile([0.0, 0.0, 1.0, 0.0, 0.0, 0.0], (len(nodes), 1)), factor=1.0)
+problem = NonlinearProblem(ReissnerBeam(w, CircularSection(2 * r, 2e11, 0.3)).residual(), w,
+                           terms=[load])
+say("load", comm.allreduce(float(problem.unconstrained_residual()[:, 2].sum())))
+"""
+
+
+@needs_mpirun
+def test_the_contact_api_is_collective_on_2_ranks(tmp_path):
+    """Two crossed beams on 2 ranks with dolfinx's default partitioner (a beam per rank):
+    ``locate_nodes`` finds each node once as owned, a point far from every node is refused on
+    both ranks, ``candidate_pairs`` refuses the pair split between the ranks on both, naming the
+    partitioner. One beam cut between the ranks: ``NodalLoad`` given every node the rank holds,
+    the ghost at the cut included, loads each node once (the residual sums to minus the 33
+    nodes' unit forces)."""
+    script = tmp_path / "api.py"
+    script.write_text(COLLECTIVE_API)
+    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+    lines = [line for r in (0, 1) for line in (tmp_path / f"rank{r}.txt").read_text().splitlines()]
+    assert lines.count("located 34") == 2 and lines.count("ghosts 1") == 2, lines
+    assert sum("absent: point [0.5, 0.0, 0.0] is" in line for line in lines) == 2, lines
+    assert sum("split: candidate_pairs: 1 of 1 pairs" in line and "slab_partitioner" in line
+               for line in lines) == 2, lines  # fmt: skip
+    assert lines.count("load -33.0") == 2, lines

@@ -19,7 +19,14 @@ from .laws import (
     hertz_mindlin,
 )
 from .nodes import BeamNodes, beam_nodes, locate_nodes
-from .pairs import NodePairs, candidate_pairs, contact_terms, hertz_laws, node_pairs
+from .pairs import (
+    NodePairs,
+    candidate_pairs,
+    candidate_stencils,
+    contact_terms,
+    hertz_laws,
+    node_pairs,
+)
 from .sliding import SlidingGroup, SlidingWindowError
 from .windows import NodeChains, sliding_terms
 
@@ -39,6 +46,7 @@ __all__ = [
     "SlidingWindowError",
     "beam_nodes",
     "candidate_pairs",
+    "candidate_stencils",
     "contact_terms",
     "hertz_laws",
     "hertz_mindlin",

@@ -12,8 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+from mpi4py import MPI
 
-__all__ = ["BeamNodes", "beam_nodes", "locate_nodes"]
+__all__ = ["BeamNodes", "beam_nodes", "chains", "input_arrays", "locate_nodes"]
 
 Array = npt.NDArray[np.float64]
 Blocks = npt.NDArray[np.int32]
@@ -42,7 +43,14 @@ def beam_nodes(V) -> BeamNodes:
     beams through contact or links, not through shared nodes).
     """
     x = np.asarray(V.tabulate_dof_coordinates(), dtype=float).reshape(-1, 3)
-    cells = np.asarray(V.dofmap.list, dtype=np.int32).reshape(-1, 2)
+    return chains(x, np.asarray(V.dofmap.list, dtype=np.int32).reshape(-1, 2))
+
+
+def chains(x, cells) -> BeamNodes:
+    """``BeamNodes`` of nodes at ``x`` (n, 3) in m joined by two-node ``cells`` (E, 2), e.g. the
+    input arrays of a mesh (``input_arrays``). Raises as ``beam_nodes``."""
+    x = np.asarray(x, dtype=float).reshape(-1, 3)
+    cells = np.asarray(cells, dtype=np.int32).reshape(-1, 2)
     n = len(x)
     degree = np.bincount(cells.ravel(), minlength=n)
     if degree.max(initial=0) > 2:
@@ -70,28 +78,66 @@ def _chunks(rows: int, columns: int, budget: int = 2**21):
 
 
 def locate_nodes(V, points, tol: float | None = None) -> Blocks:
-    """The nodes (local dof blocks) of ``V`` at ``points`` (m, (P, 3) or (3,)).
+    """The nodes of ``V`` at ``points`` (m, (P, 3) or (3,)) that this rank holds: local dof
+    blocks, owned and ghost, as ``fem.locate_dofs_geometrical`` returns them. Collective.
 
-    ``tol`` (m): how far a point may be from its node; default 1e-8 of the mesh's extent. A point
-    farther than that raises ``ValueError`` naming it.
+    On one rank every point has its node, in the order of ``points``; on several, a point's node
+    appears on the ranks that hold it (in the order of ``points``) and on no other. ``tol`` (m):
+    how far a point may be from its node; default 1e-8 of the mesh's extent. A point with no node
+    within ``tol`` on any rank raises ``ValueError`` naming it, on every rank.
     """
+    comm = V.mesh.comm
     x = np.asarray(V.tabulate_dof_coordinates(), dtype=float).reshape(-1, 3)
     p = np.atleast_2d(np.asarray(points, dtype=float))
     if p.shape[1] != 3:
         raise ValueError(f"points must be (P, 3) in m; got shape {p.shape}")
     if tol is None:
-        tol = 1e-8 * float(np.ptp(x, axis=0).max(initial=1.0))
-    nearest = np.empty(len(p), dtype=np.intp)
-    distance = np.empty(len(p))
-    for rows in _chunks(len(p), len(x)):
+        low, high = x.min(axis=0, initial=np.inf), x.max(axis=0, initial=-np.inf)
+        if comm.size > 1:
+            comm.Allreduce(MPI.IN_PLACE, low, op=MPI.MIN)
+            comm.Allreduce(MPI.IN_PLACE, high, op=MPI.MAX)
+        tol = 1e-8 * float(np.max(high - low, initial=1.0) if np.all(np.isfinite(low)) else 1.0)
+    nearest = np.zeros(len(p), dtype=np.intp)
+    distance = np.full(len(p), np.inf)
+    for rows in _chunks(len(p), len(x)) if len(x) else []:
         d = np.linalg.norm(p[rows, None, :] - x[None, :, :], axis=2)
         nearest[rows] = d.argmin(axis=1)
         distance[rows] = d[np.arange(len(d)), nearest[rows]]
-    far = np.flatnonzero(distance > tol)
+    closest = distance.copy()
+    if comm.size > 1:
+        comm.Allreduce(MPI.IN_PLACE, closest, op=MPI.MIN)
+    far = np.flatnonzero(closest > tol)
     if len(far):
         i = far[0]
         raise ValueError(
-            f"point {p[i].tolist()} is {distance[i]:.3g} m from the nearest node (tolerance "
+            f"point {p[i].tolist()} is {closest[i]:.3g} m from the nearest node (tolerance "
             f"{tol:.3g} m): put a node there, or use candidate_pairs"
         )
-    return nearest.astype(np.int32)
+    return nearest[distance <= tol].astype(np.int32)
+
+
+def input_arrays(V) -> tuple[Array, npt.NDArray[np.int64], Blocks]:
+    """The mesh of ``V`` as it was given to ``dolfinx.mesh.create_mesh``, on every rank: the input
+    points (N, 3) in m, the input cells (E, 2) as rows of them (in their input order and
+    orientation), and each input point's local dof block (N,), −1 where this rank holds none.
+    Collective (the arrays are gathered from every rank)."""
+    mesh = V.mesh
+    comm = mesh.comm
+    igi = np.asarray(mesh.geometry.input_global_indices, dtype=np.int64)
+    gnodes = np.asarray(mesh.geometry.dofmaps[0], dtype=np.int64).reshape(-1, 2)
+    block = np.full(len(mesh.geometry.x), -1, dtype=np.int32)
+    block[gnodes] = np.asarray(V.dofmap.list, dtype=np.int32).reshape(-1, 2)
+    n_cells = len(gnodes)
+    original = np.asarray(mesh.topology.original_cell_index, dtype=np.int64)[:n_cells]
+    mine = (igi, mesh.geometry.x[: len(igi), :3], original, igi[gnodes])
+    parts = comm.allgather(mine) if comm.size > 1 else [mine]
+    n_points = 1 + max(int(q[0].max(initial=-1)) for q in parts)
+    n_input_cells = 1 + max(int(q[2].max(initial=-1)) for q in parts)
+    points = np.zeros((n_points, 3))
+    cells = np.zeros((n_input_cells, 2), dtype=np.int64)
+    for ids, xs, orig, cs in parts:
+        points[ids] = xs
+        cells[orig] = cs
+    to_block = np.full(n_points, -1, dtype=np.int32)
+    to_block[igi] = block[: len(igi)]
+    return points, cells, to_block

@@ -37,15 +37,17 @@ import numpy as np
 import numpy.typing as npt
 
 from .element import ContactGroup
+from .errors import ContactError
 from .kinematics import stencil_nodes
 from .laws import FrictionLaw, NormalLaw, hertz_mindlin
-from .nodes import BeamNodes, _chunks, beam_nodes
+from .nodes import BeamNodes, _chunks, beam_nodes, chains, input_arrays
 
 __all__ = [
     "ROLES",
     "NodePairs",
     "node_pairs",
     "candidate_pairs",
+    "candidate_stencils",
     "contact_terms",
     "crossing_angle",
     "hertz_laws",
@@ -166,14 +168,20 @@ def node_pairs(
         raise ValueError(f"nodes must be local dof blocks of V, in 0..{n - 1}")
     if np.any(a == b):
         raise ValueError("a pair joins a node to itself")
-    P = len(a)
     table = np.column_stack([a, b, nodes.neighbours[a], nodes.neighbours[b]]).astype(np.int32)
-    x = nodes.positions[table]
+    return _pairs_of(table, nodes.positions[table], radius_a, radius_b, line, initial_gap,
+                     tributary, np.arange(len(a)))  # fmt: skip
+
+
+def _pairs_of(table, x, radius_a, radius_b, line, initial_gap, tributary, index) -> NodePairs:
+    """``NodePairs`` of the node table (P, 6) (``ROLES``) whose nodes are at ``x`` (P, 6, 3)."""
+    P = len(table)
     r_a, r_b = _per_pair(radius_a, P, "radius_a"), _per_pair(radius_b, P, "radius_b")
     if np.any(r_a <= 0) or np.any(r_b <= 0):
         raise ValueError("beam radii must be positive (m)")
     d = x[:, 1] - x[:, 0]
-    ta, tb = nodes.tangents(a), nodes.tangents(b)
+    chords = x[:, [3, 5]] - x[:, [2, 4]]
+    ta, tb = np.moveaxis(chords / np.linalg.norm(chords, axis=2)[..., None], 1, 0)
     if line:
         m = d - np.einsum("pi,pi->p", d, ta)[:, None] * ta
     else:
@@ -197,7 +205,8 @@ def node_pairs(
     trib = _per_pair(tributary, P, "tributary") if line else np.zeros(P)
     if line and np.any(trib <= 0):
         raise ValueError("line pairs need positive tributary lengths (m)")
-    return NodePairs(table, x, bool(line), r_a, r_b, normal, gap, trib, np.arange(P))
+    return NodePairs(table.astype(np.int32), x, bool(line), r_a, r_b, normal, gap, trib,
+                     np.asarray(index, dtype=np.intp))  # fmt: skip
 
 
 def closest_on_segments(p: Array, s0: Array, s1: Array) -> tuple[Array, Array]:
@@ -221,6 +230,7 @@ def candidate_pairs(
     initial_gap=None,
 ) -> NodePairs:
     """The pairs between two beams whose surfaces are within ``reach`` (m) of each other.
+    Collective: on several ranks, each rank gets the pairs whose node a it owns.
 
     Every node of beam b is measured against beam a's centreline (its closest point on a's
     cells) and paired with the node of a nearer that point. Crossing beams (``line=False``) get
@@ -230,17 +240,60 @@ def candidate_pairs(
     away from a crossing still measures the distance between the two centrelines there (n is
     normal to both), but it presses the beams at those nodes.
 
+    The search runs on the whole mesh (``nodes.input_arrays``), so it finds the same pairs on
+    any number of ranks, numbered alike (``NodePairs.index``). On several ranks each pair's
+    nodes and their neighbours must all be on the rank owning its node a: build the mesh with
+    ``strand.partition.slab_partitioner(z, cells, [candidate_stencils(points, cells, ...)])``;
+    otherwise ``ContactError`` on every rank.
+
     Args:
-        beam_a, beam_b: the nodes (local dof blocks of ``V``) of each beam.
+        beam_a, beam_b: the nodes (local dof blocks of ``V``, ghosts allowed) of each beam; on
+            several ranks, each rank gives those it holds (``locate_nodes``).
         radius_a, radius_b: the beams' radii, m.
         reach: largest initial gap of a pair, m (pairs of a larger gap never close at small
             sliding if reach is chosen as the largest expected approach).
-        initial_gap: as ``node_pairs`` (default: measured).
+        initial_gap: as ``node_pairs`` (default: measured; one per pair: in ``index`` order).
     """
-    nodes = beam_nodes(V)
+    comm = V.mesh.comm
+    points, cells, to_block = input_arrays(V)
+    of_block = np.full(int(to_block.max(initial=-1)) + 1, -1, dtype=np.int64)
+    held = np.flatnonzero(to_block >= 0)
+    of_block[to_block[held]] = held
+
+    def inputs(blocks) -> npt.NDArray[np.int64]:
+        mine = of_block[np.asarray(blocks, dtype=np.int64).reshape(-1)]
+        return np.unique(np.concatenate(comm.allgather(mine))) if comm.size > 1 else mine
+
+    table = candidate_stencils(
+        points, cells, inputs(beam_a), inputs(beam_b), radius_a, radius_b, reach, line
+    )
+    blocks = to_block[table]
+    n_owned = V.dofmap.index_map.size_local
+    rows = np.flatnonzero((blocks[:, 0] >= 0) & (blocks[:, 0] < n_owned))
+    split = int(np.count_nonzero(np.any(blocks[rows] < 0, axis=1)))
+    split = comm.allreduce(split) if comm.size > 1 else split
+    if split:
+        raise ContactError(
+            f"candidate_pairs: {split} of {len(table)} pairs have nodes on other ranks than their "
+            "node a's: build the mesh with strand.partition.slab_partitioner(z, cells, "
+            "[candidate_stencils(points, cells, ...)]) to keep each pair on one rank"
+        )
+    gap = None if initial_gap is None else _per_pair(initial_gap, len(table), "initial_gap")[rows]
+    return _pairs_of(blocks[rows], points[table[rows]], radius_a, radius_b, line, gap, None, rows)
+
+
+def candidate_stencils(
+    points, cells, beam_a, beam_b, radius_a: float, radius_b: float, reach: float,
+    line: bool = False,
+) -> npt.NDArray[np.int64]:  # fmt: skip
+    """``candidate_pairs`` on a mesh's input arrays, before it is built or distributed: the
+    pairs' nodes as rows (P, 6) of ``points`` (N, 3) (m), in the order of ``ROLES`` (a, b and
+    their neighbours along ``cells`` (E, 2)), between the beams whose nodes are the rows
+    ``beam_a`` and ``beam_b``. These are the stencils to give ``slab_partitioner``."""
+    nodes = chains(points, cells)
     on_a = np.zeros(len(nodes.positions), dtype=bool)
     on_a[np.asarray(beam_a, dtype=np.int64)] = True
-    nb = np.unique(np.asarray(beam_b, dtype=np.int32))
+    nb = np.unique(np.asarray(beam_b, dtype=np.int64))
     if np.any(on_a[nb]):
         raise ValueError("beam_a and beam_b share nodes: give the nodes of two separate beams")
     segments = nodes.cells[on_a[nodes.cells].all(axis=1)]
@@ -248,7 +301,7 @@ def candidate_pairs(
         raise ValueError("each beam needs at least one cell (two nodes) of V")
     x = nodes.positions
     gap = np.empty(len(nb))
-    a = np.empty(len(nb), dtype=np.int32)
+    a = np.empty(len(nb), dtype=np.int64)
     for rows in _chunks(len(nb), len(segments)):
         dist, t = closest_on_segments(x[nb[rows]], x[segments[:, 0]], x[segments[:, 1]])
         best = dist.argmin(axis=1)
@@ -264,9 +317,8 @@ def candidate_pairs(
             f"no node of beam b is within reach = {reach:.3g} m of beam a's surface (smallest "
             f"gap {gap.min():.3g} m)"
         )
-    return node_pairs(
-        V, a[keep], nb[keep], radius_a, radius_b, line, initial_gap=initial_gap, nodes=nodes
-    )
+    a, b = a[keep], nb[keep]
+    return np.column_stack([a, b, nodes.neighbours[a], nodes.neighbours[b]]).astype(np.int64)
 
 
 def _closest_of_each_run(nb, near, gap, nodes: BeamNodes) -> npt.NDArray[np.intp]:

@@ -38,6 +38,11 @@ class PairTerms(Protocol):
     A term set whose blocks are sparse within the stencil may declare ``dofs`` (m,): the positions
     (in 0..6k) of the stencil dofs that f (P, m) and K (P, m, m) hold; the others are zero and are
     neither computed nor inserted (e.g. the rotations of nodes that enter through positions only).
+
+    A term set may declare ``owned_only = True``: its terms whose first node is a ghost on this
+    rank are dropped, since the rank owning that node adds them. It may then be given every
+    local node, ghosts included (what ``fem.locate_dofs_*`` and ``locate_nodes`` return), and
+    still counts each term once over the ranks.
     """
 
     stencils: npt.NDArray[np.int32]
@@ -54,7 +59,11 @@ class NodalLoad:
     """External nodal forces/moments F (n, 6) on nodes ``blocks`` (n,), scaled by ``factor``.
 
     Its residual contribution is −factor·F (the residual is internal minus external forces).
+    ``blocks`` are local dof blocks, ghosts allowed: a node is loaded once, by the rank owning it
+    (``owned_only``).
     """
+
+    owned_only = True
 
     def __init__(self, blocks: npt.ArrayLike, values: npt.ArrayLike, factor: float = 0.0):
         self.stencils = np.asarray(blocks, dtype=np.int32).reshape(-1, 1)
@@ -115,6 +124,7 @@ class PairAssembler:
         self.bcs = list(bcs)
         # Dirichlet mask over local dofs (ghosts included): contributions there are dropped.
         n_local = V.dofmap.index_map.size_local + V.dofmap.index_map.num_ghosts
+        self._n_owned = V.dofmap.index_map.size_local
         self._bc_mask = np.zeros(6 * n_local, dtype=bool)
         for bc in self.bcs:
             dofs, _ = bc.dof_indices()
@@ -132,9 +142,15 @@ class PairAssembler:
         wn = wl.reshape(-1, 6)
         out = []
         lift = None
-        for t, (idx, rows, mask) in zip(self.terms, self._term_layouts(), strict=True):
+        for t, (idx, rows, mask, ghosts) in zip(self.terms, self._term_layouts(), strict=True):
             with np.errstate(all="ignore"):  # a wild iterate's inf/nan stops SNES, then a cut
                 f, K = t.evaluate(wn, True)
+            if len(ghosts):  # owned_only: the owner of their first node adds these
+                f = f.copy()
+                f[ghosts] = 0.0
+                if K is not None:
+                    K = K.copy()
+                    K[ghosts] = 0.0
             f_rows = f[rows].copy()  # unmasked, for the reactions
             if len(rows):  # only the few stencils that touch a Dirichlet dof
                 if K is not None:
@@ -196,7 +212,7 @@ class PairAssembler:
 
     def _term_layouts(self) -> list:
         """Per term set: local dof indices (P, m) of f and K, the rows (stencils) holding a
-        Dirichlet dof, and their dof masks. Built once."""
+        Dirichlet dof, their dof masks, and the rows an ``owned_only`` set drops. Built once."""
         if self._layouts is None:
             self._layouts = []
             for t in self.terms:
@@ -207,5 +223,8 @@ class PairAssembler:
                 idx = np.ascontiguousarray(6 * st[:, layout // 6] + layout % 6, dtype=np.int32)
                 m = self._bc_mask[idx]
                 rows = np.flatnonzero(m.any(axis=1))
-                self._layouts.append((idx, rows, m[rows]))
+                ghosts = np.zeros(0, dtype=np.intp)
+                if getattr(t, "owned_only", False) and len(st):
+                    ghosts = np.flatnonzero(st[:, 0] >= self._n_owned)
+                self._layouts.append((idx, rows, m[rows], ghosts))
         return self._layouts

@@ -145,21 +145,31 @@ class _CsvFile:
 
 class StepTable(_CsvFile):
     """``steps.csv``: one row per converged step: number, stage, programme time (the time of
-    the field series), the set-up's state, Newton's iterations and cuts, wall time (s) and final
-    residual norm (N)."""
+    the field series), the set-up's state, with a ``gauge`` (``reactions.ReactionGauge``) the
+    strand's reactions at both ends (``EndReactions``, also kept in ``reactions`` by step
+    number), Newton's iterations and cuts, wall time (s) and final residual norm (N)."""
 
-    def __init__(self, folder: Path, state_type):
+    def __init__(self, folder: Path, state_type, gauge=None):
+        from .reactions import EndReactions
+
+        self.gauge = gauge
+        self.reactions: dict[int, Any] = {}
+        measured = columns(EndReactions) if gauge is not None else []
         super().__init__(
             Path(folder) / "steps.csv",
-            ["step", "stage", "time", *columns(state_type), "iterations", "cuts",
+            ["step", "stage", "time", *columns(state_type), *measured, "iterations", "cuts",
              "failed_iterations", "seconds", "residual_N"],
         )  # fmt: skip
 
     def record(self, ctx: StepContext) -> None:
         s = ctx.step
+        measured = []
+        if self.gauge is not None:
+            self.reactions[s.number] = self.gauge.measure(ctx.residual)
+            measured = values(self.reactions[s.number])
         self.writer.writerow(
-            [s.number, s.stage, f"{s.time:.12g}", *values(s.state), s.iterations, s.cuts,
-             s.failed_iterations, s.seconds, s.residual]
+            [s.number, s.stage, f"{s.time:.12g}", *values(s.state), *measured, s.iterations,
+             s.cuts, s.failed_iterations, s.seconds, s.residual]
         )  # fmt: skip
         self.file.flush()
 

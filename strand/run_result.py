@@ -27,6 +27,8 @@ class RunResult:
     bending: list[StepBending] = field(default_factory=list)
     #: the slipping share of each interface's pairs in the measuring zone (``slip.csv``)
     slip: list[SlipFractions] = field(default_factory=list)
+    #: the strand's reactions at both ends (``reactions.EndReactions``) by step number
+    reactions: dict[int, Any] = field(default_factory=dict)
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: PairResults | None = None  # the contact pairs there
     first_cycle: CellResults | None = None  # at the first step of the cycle

@@ -21,6 +21,7 @@ from .parallel import is_root
 from .post import CellEvaluator, cell_results
 from .problem import StrandProblem
 from .programme import LoadProgramme, Position, Stage, run_programme
+from .reactions import ReactionGauge
 from .recorders import (
     AxialForceTable,
     BendingTable,
@@ -84,7 +85,7 @@ def case_recorders(
     su = problem.setup
     unit = su.units[parameter]
     recorders = [
-        StepTable(folder, su.state_type),
+        StepTable(folder, su.state_type, ReactionGauge(problem)),
         AxialForceTable(folder, parameter, unit),
         BendingTable(folder, su.bending_type),
         SlipTable(folder, problem.geometry, su.measuring_zone, parameter, unit),
@@ -127,6 +128,7 @@ class Recording:
         )  # fmt: skip
         self.bending = next(r for r in self.recorders if isinstance(r, BendingTable))
         self.slip = next(r for r in self.recorders if isinstance(r, SlipTable))
+        self.steps_table = next(r for r in self.recorders if isinstance(r, StepTable))
         kind = kind_of(case)
         units = {"tension": ("kN", 1e3), kind.parameter: kind.progress_unit}
         self.progress = Progress(programme, units, stream)
@@ -220,6 +222,7 @@ def run_programme_with_outputs(
     result.tensioned, result.peak, result.peak_w = keys.tensioned, keys.peak, keys.peak_w
     result.tensioned_pairs, result.first_cycle = keys.tensioned_pairs, keys.first_cycle
     result.bending, result.slip = recording.bending.rows, recording.slip.rows
+    result.reactions = recording.steps_table.reactions
     result.reference = kind_of(case).reference(case, result)
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=recording.seconds)

@@ -1,6 +1,7 @@
 """The closing summary of a run (``summary.txt``): its effort, the tensioned state against the
 fibre model, the set-up kind's own lines (``SetupKind.summary_lines``), the bending stiffness
-bounds, and any warning or failure. Units: N, N/m, µε, MPa, s."""
+bounds, the strand's end reactions (tension, torque, bending moments; Costello's torque beside
+them after tension), and any warning or failure. Units: N, N m, N/m, µε, MPa, s."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ __all__ = [
     "summarize",
     "effort_line",
     "tension_lines",
+    "reaction_lines",
     "contact_force_line",
     "layer_stresses",
     "wire_stress_line",
@@ -30,6 +32,7 @@ def summarize(case: Case, result: RunResult, problem) -> str:
     """The closing summary: effort, key results, and the tension stage against the fibre model."""
     lines = [effort_line(result)]
     lines += tension_lines(case, result, problem.model.geometry)
+    lines += reaction_lines(case, result)
     lines += kind_of(case).summary_lines(case, result)
     ei_min, ei_max = bending_stiffness_bounds(case.cable)
     lines.append(f"bending stiffness bounds: EI_min {ei_min:.1f} N m², EI_max {ei_max:.0f} N m²")
@@ -78,6 +81,39 @@ def tension_lines(case: Case, result: RunResult, geometry) -> list[str]:
         )
     lines.append(wire_stress_line(case.cable, t, L))
     lines.append(contact_force_line(geometry, result.tensioned_pairs))
+    return lines
+
+
+def reaction_lines(case: Case, result: RunResult) -> list[str]:
+    """The strand's reactions at both ends (``result.reactions``) after tension, with Costello's
+    torque of the straight strand with its ends held against rotation beside them, and at the
+    largest load of the cycle."""
+    from .analytical import held_end_torque
+
+    tension = [s for s in result.steps if s.parameter == "tension"]
+    lines = []
+    if tension and tension[-1].number in result.reactions:
+        r = result.reactions[tension[-1].number]
+        torque = held_end_torque(case.cable, tension[-1].load)
+        lines += [
+            f"  end reactions: tension {r.end_tension_0 / 1e3:.3f} kN (z = 0), "
+            f"{r.end_tension_L / 1e3:.3f} kN (z = L); torque about +z {r.end_torque_0:+.3f} N m "
+            f"(z = 0), {r.end_torque_L:+.3f} N m (z = L)",
+            f"  Costello, straight strand with ends held against rotation: torque {torque:+.3f} "
+            f"N m at z = L ({100 * (r.end_torque_L / torque - 1):+.1f} %)"
+            if torque
+            else "  Costello: no tension–torque coupling (no helical layer)",
+        ]
+    peak = result.peak_step
+    if peak is not None and peak.load != 0 and peak.number in result.reactions:
+        r = result.reactions[peak.number]
+        lines.append(
+            f"end reactions at the largest {peak.parameter} (step {peak.number}): tension "
+            f"{r.end_tension_0 / 1e3:.3f} / {r.end_tension_L / 1e3:.3f} kN, torque "
+            f"{r.end_torque_0:+.3f} / {r.end_torque_L:+.3f} N m, moments about x "
+            f"{r.end_moment_x_0:+.2f} / {r.end_moment_x_L:+.2f} N m, about y "
+            f"{r.end_moment_y_0:+.2f} / {r.end_moment_y_L:+.2f} N m (z = 0 / z = L)"
+        )
     return lines
 
 

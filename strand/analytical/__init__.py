@@ -5,11 +5,12 @@
 * ``rolling``: the stick slope when wires may roll on stuck point ties, and what a Hertz patch
   offers against rolling and drilling;
 * ``beam``: the strand as one tensioned beam (midspan load, Poffenberger–Swart);
-* ``costello``: Costello's axial–torsional stiffness of a straight strand.
+* ``costello``: Costello's axial–torsional stiffness of a straight strand, and its torque
+  under tension with the ends held against rotation.
 """
 
 from .beam import POFFENBERGER_SWART_DISTANCE, TensionedBeam, clamped_deflection, poffenberger_swart
-from .costello import costello_stiffness
+from .costello import costello_stiffness, held_end_torque
 from .rolling import ContactPatch, StickEstimate, contact_patch, stick_bending_estimate
 from .stick_slip import EI_MIN_VARIANTS, StickSlipLaw, ei_min, loop_area, masing
 
@@ -24,6 +25,7 @@ __all__ = [
     "POFFENBERGER_SWART_DISTANCE",
     "poffenberger_swart",
     "costello_stiffness",
+    "held_end_torque",
     "StickEstimate",
     "stick_bending_estimate",
     "ContactPatch",

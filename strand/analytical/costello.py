@@ -1,4 +1,5 @@
-"""**Axial–torsional stiffness** (``costello_stiffness``): Costello's thin-rod theory of a straight
+"""**Axial–torsional stiffness** (``costello_stiffness``) and the torque of a tensioned strand
+whose ends are held against rotation (``held_end_torque``): Costello's thin-rod theory of a straight
 strand (helix radii fixed): each wire's strain ξ, curvature and twist changes from the strand's
 strain ε and twist rate θ′, its tension T = EAξ, moments G′ = EIΔκ′, H = GJΔτ, shear
 N′ = Hκ′ − G′τ (Love), summed into the strand's F and M; linearised numerically.
@@ -13,7 +14,7 @@ import numpy.typing as npt
 
 from ..cable import Cable
 
-__all__ = ["costello_stiffness"]
+__all__ = ["costello_stiffness", "held_end_torque"]
 
 Array = npt.NDArray[np.float64]
 
@@ -53,3 +54,12 @@ def costello_stiffness(cable: Cable, step: float = 1e-7) -> Array:
     twist_step = step / max(lay.radius for lay in cable.layers)
     d_twist = (resultants(0.0, twist_step) - resultants(0.0, -twist_step)) / (2 * twist_step)
     return np.column_stack([d_eps, d_twist])
+
+
+def held_end_torque(cable: Cable, tension: float) -> float:
+    """Costello's torque (N m, about +z, on a section's face of outward normal +z) of a straight
+    strand under ``tension`` (N) with its ends held against rotation: M = k_θε T / k_εε, with
+    k_θε the mean of the two coupling terms of ``costello_stiffness`` (they differ by a few %,
+    Love's resultants with exact kinematics; a symmetric model sits between them)."""
+    C = costello_stiffness(cable)
+    return float(0.5 * (C[0, 1] + C[1, 0]) * tension / C[0, 0])

@@ -230,18 +230,32 @@ def incomplete_note(result) -> str:
     return f"INCOMPLETE: the run {how} after step {len(result.steps)}; see summary.txt"
 
 
+def magnification(largest: float, size: float) -> float:
+    """The factor (1, 2 or 5 × 10^k, at least 1) that shows a displacement of ``largest`` (m) as
+    between a fifth and a half of ``size`` (m)."""
+    if largest <= 0 or 2 * largest >= size:
+        return 1.0
+    target = size / (2 * largest)
+    decade = 10.0 ** np.floor(np.log10(target))
+    return float(max(f * decade for f in (1, 2, 5) if f * decade <= target))
+
+
 def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
-    at the largest load (true scale) and coloured by wire axial force, seen across the load."""
+    at the largest load and coloured by wire axial force, seen across the load. Displacements are
+    magnified (``magnification``: the largest across the strand's axis shown as up to half the
+    strand's diameter), the factor in the title."""
     import pyvista
 
     g = problem.geometry
     peak, L = result.peak, case.mesh.length
-    x = g.points + result.peak_w[:, :3]  # the geometry's point order, whole on every rank
     D = case.cable.outer_diameter
     half = min(L / 2, max(0.15 * L, 6 * D))
     outer = len(case.cable.layers) - 1
     shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
+    u = result.peak_w[:, :3]  # the geometry's point order, whole on every rank
+    factor = magnification(float(np.abs(u[g.cells[shown], :2]).max(initial=0.0)), D)
+    x = g.points + factor * u
     lines = np.column_stack([np.full(len(shown), 2), g.cells[shown]]).ravel()
     grid = pyvista.PolyData(x, lines=lines)
     grid.cell_data["N (N)"] = peak.axial[shown]
@@ -258,7 +272,7 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
         f"midspan, at P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
-        "deflection true scale",
+        + (f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"),
         position="upper_edge", font_size=10,
     )  # fmt: skip
     if note:
@@ -289,8 +303,8 @@ def fatigue_figures(folder, report) -> list[Path]:
     st = read_history(folder / "contact_pairs.h5").static
     c = report.crossings
     interfaces = np.unique(st["interface"])
-    fig, axes = plt.subplots(1, len(interfaces), figsize=(4 * len(interfaces), 5), sharey=True,
-                             squeeze=False)  # fmt: skip
+    fig, axes = plt.subplots(1, len(interfaces), figsize=(max(4 * len(interfaces), 6.5), 5),
+                             sharey=True, squeeze=False, layout="constrained")  # fmt: skip
     f2, stuck = 1e-6 * c["ruiz_f2"], c["stuck"]
     positive = f2[(f2 > 0) & ~stuck]
     norm = LogNorm(positive.max() * 1e-4, positive.max()) if len(positive) else None

@@ -184,6 +184,7 @@ def midspan_bending_figure(case: Case, result, note: str = "") -> Path:
     ax.set_ylim(1.2 * min(moment.min(), 0), 1.2 * max(moment.max(), 0) + 1e-9)
     ax.set_xlabel("curvature κ (1/m)")
     ax.set_ylabel("bending moment M (N m)")
+    ax.set_title(f"midspan moment–curvature, T = {case.load.tension / 1e3:g} kN")
     ax.legend()
     ax.grid(alpha=0.3)
     return save_figure(fig, Path(result.folder) / "moment_curvature.png", note)

@@ -333,8 +333,10 @@ def fatigue_report(
     end_zone = settings.end_zone_length(cable)
     crossings = crossing_results(pairs, sections, cable, curves, cycles, settings.stuck_slip)
     crossings["clamp"] = in_clamp_zone(pairs.static["z"], length, end_zone)
+    crossings["line"] = pairs.static["line"].astype(bool)
     elements = element_results(sections, settings.surface_points, curves)
     elements["clamp"] = in_clamp_zone(sections.static["z"], length, end_zone)
+    elements["layer"] = np.asarray(sections.static["layer"])
     wires = wire_results(sections, elements, elements["clamp"], curves)
     tn = tension_check(sections, cable, length, settings.breaking_strength, wires)
     ps = (

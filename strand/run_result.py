@@ -32,6 +32,8 @@ class RunResult:
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: PairResults | None = None  # the contact pairs there
     first_cycle: CellResults | None = None  # at the first step of the cycle
+    #: the fatigue report of the run (``fatigue_report.FatigueReport``; None without one)
+    fatigue: Any = None
     #: what the set-up kind's analytical reference predicts for the run (``SetupKind.reference``)
     reference: Any = None
     peak: CellResults | None = None  # at the largest abs(cycle load) reached

@@ -267,6 +267,7 @@ def _report_and_figures(
     if case.fatigue.outputs and len(result.cycle_steps):
         seconds = recording.seconds_of(PairHistory, WireSectionHistory)
         report = run_fatigue_report(case, result, seconds, stream)
+        result.fatigue = report
     if case.output.plots:
         from .plots import fatigue_figures, results_figures
 

@@ -1,6 +1,10 @@
 """Sweeps: the cycle of a case at several amplitudes (``[load] sweep``), each from the same
-tensioned state, and the table that compares them (``sweep.csv``, ``sweep.txt``): effort, and the
-set-up kind's measure (``SetupKind.measure``) at the peak and back at zero load."""
+tensioned state, and the table that compares them (``sweep.csv``, ``sweep.txt``): effort, the
+set-up kind's measure (``SetupKind.measure``) at the peak and back at zero load, and, with the
+fatigue outputs, what answers the fatigue question per amplitude (``fatigue_columns``): the
+largest surface stress range per layer in the free span and the clamp zone, the worst crossing's
+(and line contact's) Ruiz F₂ and slip amplitude per zone, the largest Miner damage per zone and Poffenberger–Swart's
+ratio (NaN where skipped)."""
 
 from __future__ import annotations
 
@@ -8,6 +12,8 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from .build import build_problem, results_folder, settings_text, setup_and_programme
 from .case import Case
@@ -19,7 +25,7 @@ from .programme import LoadProgramme, Position
 from .run_result import RunResult, Start
 from .runner import run_programme_with_outputs
 
-__all__ = ["run_sweep", "SweepTable", "sweep_table"]
+__all__ = ["run_sweep", "SweepTable", "sweep_table", "fatigue_columns"]
 
 
 def run_sweep(
@@ -103,13 +109,17 @@ class SweepTable:
 
 
 def sweep_table(case: Case, parameter: str, unit: str, results: list[RunResult]) -> SweepTable:
-    """One row per amplitude (of ``parameter``, in ``unit`` as in column names): its effort and
-    what the set-up measured at the peak and back at zero load (the kind's ``measure``)."""
+    """One row per amplitude (of ``parameter``, in ``unit`` as in column names): its effort,
+    what the set-up measured at the peak and back at zero load (the kind's ``measure``) and,
+    where the members have a fatigue report, its ``fatigue_columns``."""
     head = [f"amplitude_{unit}", "steps", "iterations", "cuts", "seconds"]
     measure = kind_of(case).measure
     head += [f"peak_{measure}", f"unloaded_{measure}", "outcome"]
+    fatigue = [fatigue_columns(r.fatigue, len(case.cable.layers)) for r in results]
+    names = next((list(f) for f in fatigue if f), [])
+    head += names
     rows = []
-    for r in results:
+    for r, f in zip(results, fatigue, strict=True):
         cycle = r.cycle_steps
         amp = max((abs(s.load) for s in cycle), default=0.0)
         peak = r.peak_step
@@ -120,9 +130,44 @@ def sweep_table(case: Case, parameter: str, unit: str, results: list[RunResult])
             f"{getattr(peak.state, measure):.12g}" if peak else "nan",
             f"{getattr(zero[0].state, measure):.12g}" if zero else "nan",
             "interrupted" if r.interrupted else "failed" if r.failure else "done",
+            *(f"{f.get(name, np.nan):.6g}" for name in names),
         ])  # fmt: skip
     text = [f"sweep of {parameter} from one tensioned state ({case.load.tension / 1e3:g} kN):",
             "  " + "  ".join(head)]  # fmt: skip
     text += ["  " + "  ".join(row) for row in rows]
     csv_text = "\n".join(",".join(r) for r in [head, *rows]) + "\n"
     return SweepTable("\n".join(text) + "\n", csv_text)
+
+
+def fatigue_columns(report, n_layers: int) -> dict[str, float]:
+    """What a member's fatigue report (``fatigue_report.FatigueReport``; None: {}) says about
+    the fatigue question, by column name with its unit: per layer (0: the core) and zone (free
+    span, clamp zone) the largest surface stress range (MPa); per zone the worst crossing by
+    Ruiz's F₂ (MPa J/m²) and its slip amplitude (µm), and the same for the line contacts (their
+    F₂ with the tributary length's contact area, ``worst_line_…``), the largest Miner
+    damage per history of a wire (NaN: none assessed); Poffenberger–Swart's ratio of the model's
+    amplitude to its own (NaN where skipped or without a clamp). NaN where a zone has none."""
+    if report is None:
+        return {}
+    e, w, c = report.elements, report.wires, report.crossings
+    out: dict[str, float] = {}
+    for zone, clamp in (("free", False), ("clamp", True)):
+        for i in range(n_layers):
+            mine = (e["clamp"] == clamp) & (e["layer"] == i)
+            out[f"stress_range_{zone}_layer_{i}_MPa"] = (
+                1e-6 * float(e["range"][mine].max()) if mine.any() else np.nan
+            )
+    for zone, clamp in (("free", False), ("clamp", True)):
+        for kind, line in (("", False), ("line_", True)):
+            mine = np.flatnonzero((c["clamp"] == clamp) & (c["line"] == line))
+            k = mine[np.argmax(c["ruiz_f2"][mine])] if len(mine) else None
+            f2, slip = (np.nan, np.nan) if k is None else (c["ruiz_f2"][k], c["slip_amplitude"][k])
+            out[f"worst_{kind}f2_{zone}_MPa_J_per_m2"] = 1e-6 * f2
+            out[f"worst_{kind}slip_amplitude_{zone}_um"] = 1e6 * slip
+        damage = w[f"damage_{zone}"]
+        out[f"largest_damage_{zone}"] = (
+            np.nan if np.all(np.isnan(damage)) else float(np.nanmax(damage))
+        )
+    ps = report.poffenberger_swart
+    out["ps_ratio"] = ps["ratio"] if ps is not None and ps["holds"] else np.nan
+    return out

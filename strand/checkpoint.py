@@ -53,7 +53,10 @@ class Checkpoint:
     next increment ``step`` and last ``load_increment``, None at none), the nodal unknowns ``w``
     (N, 6) and the ramp's last increment of them ``dw`` (N, 6, or None) in the geometry's point
     order, and the contact history ``pairs`` (per name, arrays over the geometry's pairs) and
-    ``same_layer`` (likewise over the same-layer pairs, ``strand.same_layer``; empty without)."""
+    ``same_layer`` (likewise over the same-layer pairs, ``strand.same_layer``; empty without),
+    and the state's unconstrained ``residual`` (N, 6; the supports' reactions, None if not kept):
+    the converged iterate's, which the committed contact history does not give back exactly
+    (committing projects each friction traction onto the new tangent plane)."""
 
     number: int
     time: float
@@ -65,6 +68,7 @@ class Checkpoint:
     dw: Array | None
     pairs: dict[str, np.ndarray] = field(default_factory=dict)
     same_layer: dict[str, np.ndarray] = field(default_factory=dict)
+    residual: Array | None = None
 
 
 def _block_points(model) -> npt.NDArray[np.int64]:
@@ -88,6 +92,7 @@ def capture(problem, number: int, time: float, position: Position) -> Checkpoint
         None if ramp is None or ramp.previous is None else ramp.previous[0],
         model.node_values(), dw, model.gather_pairs([g.history_arrays() for g in model.contact]),
         model.same_layer_history(),
+        model.gather_nodes(problem.solver.unconstrained_residual()),
     )  # fmt: skip
 
 
@@ -112,6 +117,8 @@ def restore(problem, checkpoint: Checkpoint) -> Position:
         g.restore_history({k: v[g.index] for k, v in checkpoint.same_layer.items()}, model.nodal)
     problem.solver.commit()  # the state rollback returns to (the groups' history is set)
     c = checkpoint
+    if c.residual is not None:
+        problem.solver.keep_residual(c.residual[points[: model.n_owned]])
     if c.step is None:
         return Position(c.stage, None)
     previous = None
@@ -143,6 +150,8 @@ def write_checkpoint(path: str | Path, checkpoint: Checkpoint, comm=MPI.COMM_WOR
             group = f.create_group(name)
             for k, v in arrays.items():
                 group.create_dataset(k, data=v)
+        if c.residual is not None:
+            f.create_dataset("residual", data=c.residual)
     tmp.replace(path)
 
 
@@ -170,4 +179,5 @@ def read_checkpoint(path: str | Path) -> Checkpoint:
             optional("step"), optional("load_increment"), f["w"][()],
             f["dw"][()] if "dw" in f else None, {k: v[()] for k, v in f["pairs"].items()},
             {k: v[()] for k, v in f["same_layer"].items()} if "same_layer" in f else {},
+            f["residual"][()] if "residual" in f else None,
         )  # fmt: skip

@@ -113,6 +113,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._snes.setConvergenceTest(self._convergence)
         self._snes.setFromOptions()
         self._saved = u.x.array.copy()
+        self._kept_residual: npt.NDArray[np.float64] | None = None  # ``keep_residual``
         #: wall time (s) in: residual and Jacobian callbacks (everything they do), the pair terms'
         #: evaluation (inside the callbacks), their insertion into PETSc objects (idem), and the
         #: whole of ``solve`` (callbacks + LU + SNES overhead)
@@ -175,6 +176,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         """Run Newton from the current ``u``. On failure ``u`` holds the last iterate."""
         self._convergence.reset()
         self._pairs.forget()
+        self._kept_residual = None
         t0 = time.perf_counter()
         fem_petsc.assign(self._u, self._x)
         self._snes.solve(None, self._x)
@@ -214,7 +216,10 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         Dirichlet condition applied and no pair term masked, as (n_blocks, 6) over the owned
         nodes: at supported dofs it is the support reaction. Uses the pair terms' last
         evaluation when it was at this state (it is after a solve), so their states and
-        histories are left as they are."""
+        histories are left as they are. After ``keep_residual``, the residual kept, until the
+        next solve."""
+        if self._kept_residual is not None:
+            return self._kept_residual.copy()
         b = fem_petsc.create_vector(self.V)
         with b.localForm() as bl:
             bl.set(0.0)
@@ -226,6 +231,12 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         out = b.array_r[: 6 * n_owned].reshape(-1, 6).copy()
         b.destroy()
         return out
+
+    def keep_residual(self, residual: npt.NDArray[np.float64]) -> None:
+        """Take ``residual`` (n_owned, 6) as the current state's unconstrained residual until
+        the next solve: a restored state's, as its converged iterate gave it (the committed
+        contact history does not give it back to round-off)."""
+        self._kept_residual = np.array(residual, dtype=float).reshape(-1, 6)
 
     # -- load steps ------------------------------------------------------------------------------
     def commit(self) -> None:

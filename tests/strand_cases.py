@@ -130,3 +130,12 @@ def earlier_run(folder: Path) -> Path:
     (folder / "small" / RUN_MARKER).write_text("another run")
     (folder / ".keep").write_text("")
     return folder
+
+
+def one_line_error(capsys) -> str:
+    """The one line a refused command wrote to stderr (no traceback)."""
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    return lines[0]

@@ -143,6 +143,21 @@ def test_full_stick_with_crossings_is_limited_by_the_beams_not_the_contacts():
     assert 0.4 * ei_max < slopes[0] < 0.7 * ei_max
 
 
+def full_stick_fields(cable):
+    """The first step (κ = 0.002 1/m) of ``cable`` in full stick, crossings only (penalty,
+    g_lim = 0.05 µm): its zone record, its stick–slip law and the zone's wire fields per layer
+    (``post.zone_layer_fields``); asserts that no pair slips."""
+    base = []
+    contact = ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8)
+    zb, problem = next(bent(cable, contact, [0.002], tensioned=base))
+    assert problem.pair_results().slipping.sum() == 0
+    law = StickSlipLaw(cable, 10e3)
+    plane = np.array([lay.K * lay.r for lay in law.layers])
+    cells = cell_results(problem.model, problem.setup.direction)
+    return zb, law, zone_layer_fields(cells, base[0], problem.setup.measuring_zone, zb.curvature,
+                                      plane)  # fmt: skip
+
+
 def test_in_full_stick_the_wires_roll_on_their_ties_as_the_estimate_says():
     """The 1+6+12 of the test above in full stick (M/κ 0.547 EI_max at κ = 0.002 1/m): the zone's
     wire fields fitted per layer against φ (``post.zone_layer_fields``) beside the smeared
@@ -153,16 +168,8 @@ def test_in_full_stick_the_wires_roll_on_their_ties_as_the_estimate_says():
     say, while spinning as the estimate does; layer 2 stretches far less. Its spin, which the
     estimate leaves at nearly zero, is not."""
     cable = nineteen_wire(friction=5.0)
-    base = []
-    contact = ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8)
-    zb, problem = next(bent(cable, contact, [0.002], tensioned=base))
-    assert problem.pair_results().slipping.sum() == 0
-    law = StickSlipLaw(cable, 10e3)
-    plane = np.array([lay.K * lay.r for lay in law.layers])
-    cells = cell_results(problem.model, problem.setup.direction)
-    f = zone_layer_fields(cells, base[0], problem.setup.measuring_zone, zb.curvature, plane)
+    zb, law, f = full_stick_fields(cable)
     estimate = stick_bending_estimate(cable)
-    print(f, estimate)
     assert zb.moment_zone_middle / zb.curvature / law.ei_max == pytest.approx(0.547, abs=0.005)
     assert f.axial_share[0] == pytest.approx(0.90, abs=0.03)
     assert f.axial_share[1] == pytest.approx(0.37, abs=0.03)
@@ -187,14 +194,7 @@ def test_with_the_spin_held_full_stick_nears_plane_sections(monkeypatch):
 
     monkeypatch.setattr(strand.model, "layer_section", stiff_torsion)
     cable = nineteen_wire(friction=5.0)
-    base = []
-    contact = ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8)
-    zb, problem = next(bent(cable, contact, [0.002], tensioned=base))
-    assert problem.pair_results().slipping.sum() == 0
-    law = StickSlipLaw(cable, 10e3)
-    plane = np.array([lay.K * lay.r for lay in law.layers])
-    cells = cell_results(problem.model, problem.setup.direction)
-    f = zone_layer_fields(cells, base[0], problem.setup.measuring_zone, zb.curvature, plane)
+    zb, law, f = full_stick_fields(cable)
     estimate = stick_bending_estimate(cable, spin=False)
     assert estimate.ratio == pytest.approx(1.0, abs=1e-9)
     slope = zb.moment_zone_middle / zb.curvature / law.ei_max

@@ -16,20 +16,12 @@ from strand.case import case_from_dict, load_case
 from strand.case_toml import case_toml
 from strand.cli import main
 from strand.post import fibre_model
-from strand_cases import SEVEN_WIRE
+from strand_cases import SEVEN_WIRE, one_line_error
 
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
 #: the 1+6 of SEVEN_WIRE with a yield stress on its core below the core's stress at 10 kN
 #: (189 MPa by the model, 198 MPa by the fibre model)
 YIELDING = QUICK.replace("friction = 0.3\n", "friction = 0.3\nyield_stress = 150e6\n", 1)
-
-
-def one_line_error(capsys) -> str:
-    err = capsys.readouterr().err
-    assert "Traceback" not in err
-    lines = err.strip().splitlines()
-    assert len(lines) == 1, err
-    return lines[0]
 
 
 def same_case(a, b) -> bool:

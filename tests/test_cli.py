@@ -19,7 +19,7 @@ import pytest
 from strand import __version__
 from strand.case import CaseError, load_case
 from strand.cli import main
-from strand_cases import SEVEN_WIRE, contents, earlier_run
+from strand_cases import SEVEN_WIRE, contents, earlier_run, one_line_error
 
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
 
@@ -29,14 +29,6 @@ def seven(tmp_path) -> Path:
     path = tmp_path / "seven.toml"
     path.write_text(QUICK)
     return path
-
-
-def one_line_error(capsys) -> str:
-    err = capsys.readouterr().err
-    assert "Traceback" not in err
-    lines = err.strip().splitlines()
-    assert len(lines) == 1, err
-    return lines[0]
 
 
 @pytest.mark.parametrize(

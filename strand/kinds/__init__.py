@@ -8,8 +8,9 @@ the measure a sweep reports, its analytical reference, its summary lines and fig
 registry maps ``[load] kind`` names to kinds: ``register`` adds one (the built-in ones at the end
 of this module), ``lookup`` finds one by name (a ``CaseError`` naming the known kinds otherwise)
 and ``kind_of`` gives a case's. The built-in kinds: ``saddle`` (the seed paper's midspan saddle
-test, ``strand.kinds.saddle``) and ``bending`` (uniform bending by end rotations,
-``strand.kinds.bending``); tests/test_setup_kinds.py registers one of its own.
+test, ``strand.kinds.saddle``), ``bending`` (uniform bending by end rotations,
+``strand.kinds.bending``) and ``tension_cycle`` (the end force cycled about the mean tension,
+``strand.kinds.tension_cycle``); tests/test_setup_kinds.py registers one of its own.
 """
 
 from __future__ import annotations
@@ -172,9 +173,9 @@ def lookup(name: str) -> SetupKind:
     try:
         return _KINDS[name]
     except KeyError:
-        raise CaseError(
-            f"[load] kind = {name!r} is unknown; choose {' or '.join(_KINDS)}"
-        ) from None
+        *others, last = _KINDS
+        choices = f"{', '.join(others)} or {last}" if others else last
+        raise CaseError(f"[load] kind = {name!r} is unknown; choose {choices}") from None
 
 
 def kind_of(case: Case) -> SetupKind:
@@ -185,6 +186,8 @@ def kind_of(case: Case) -> SetupKind:
 # the built-in kinds (their modules import ``SetupKind`` from here)
 from .bending import UniformBending  # noqa: E402
 from .saddle import Saddle  # noqa: E402
+from .tension_cycle import TensionCycle  # noqa: E402
 
 register(Saddle())
 register(UniformBending())
+register(TensionCycle())

@@ -126,3 +126,21 @@ def test_a_tension_cycle_that_compresses_the_strand_is_refused():
                                  "saddle_length": 1e-3}})  # fmt: skip
     ok = case_from_dict({"load": {"kind": "tension_cycle", "saddle_length": 1e-3}})
     assert ok.load.tension_swing == 10e3 and ok.load.fixed_lateral == 0.0
+
+
+def test_the_tension_cycle_case_file_reads_as_its_comments_say():
+    """cases/quick_1x6_tension_cycle.toml: the kind, 10 kN ± 3 kN with a 300 N saddle held, and
+    the programme tension → saddle → legs to 13, 7 and 10 kN of end force."""
+    from pathlib import Path
+
+    from strand.kinds import kind_of
+
+    case = load_case(Path(__file__).parents[1] / "cases" / "quick_1x6_tension_cycle.toml")
+    kind = kind_of(case)
+    assert kind.name == "tension_cycle" and case.unset_loads == ()
+    assert (case.load.tension, case.load.tension_swing, case.load.fixed_lateral) == (
+        10e3, 3e3, 300.0
+    )  # fmt: skip
+    stages = kind.programme(case).stages
+    assert [s.parameter for s in stages] == ["tension", "lateral"] + ["tension_swing"] * 3
+    assert [case.load.tension + s.target for s in stages[2:]] == [13e3, 7e3, 10e3]

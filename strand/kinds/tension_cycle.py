@@ -191,7 +191,7 @@ class TensionCycle(SetupKind):
         if lateral != 0:
             stages.append(Stage("lateral", "lateral", lateral, steps.lateral,
                                 steps.lateral / 2**steps.cuts, steps.lateral_max,
-                                steps.growth))  # fmt: skip
+                                steps.growth, extrapolate=True))  # fmt: skip
         first, largest = self.step_sizes(self.steps(case))
         stages += cycle_stages(self.parameter, self.amplitude(case), load.cycle, first, largest,
                                steps.cuts, steps.growth)  # fmt: skip

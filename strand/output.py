@@ -1,9 +1,11 @@
 """Result files written as a run goes: time series of the beam fields, as XDMF (ParaView, meshio)
-and VTX (ADIOS2: ParaView, PyVista)."""
+and VTX (ADIOS2: ParaView, PyVista), with the loads of every frame in a CSV file beside them."""
 
 from __future__ import annotations
 
+import csv
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import dolfinx
@@ -12,6 +14,8 @@ import numpy.typing as npt
 from dolfinx import fem
 
 from forms import ReissnerBeam
+
+from .parallel import root_open
 
 __all__ = ["FieldWriter", "cell_function", "meshio_layout", "section_force_values"]
 
@@ -35,10 +39,17 @@ class FieldWriter:
     ``moment`` = (torque, M2, M3) in N m; ``axial_force`` = N alone. Constant cell data (wire and
     layer ids, ...) given as DG0 functions in ``cell_data`` are written with every step so that
     ParaView can threshold on them at any time. The XDMF file is kept in the layout meshio reads
-    too (``meshio_layout``).
+    too (``meshio_layout``), each frame named as given to ``write``.
+
+    Neither dolfinx writer stores a number per frame beside the functions, so the ``loads``
+    named here (e.g. ``tension_N``) go to ``loads_path``, a CSV file beside the series
+    (``<stem>_loads.csv``): one row per frame, its name, its time and the loads there.
     """
 
-    def __init__(self, path: str | Path, beam: ReissnerBeam, cell_data=(), vtx: bool = True):
+    def __init__(
+        self, path: str | Path, beam: ReissnerBeam, cell_data=(), vtx: bool = True,
+        loads: Sequence[str] = (),
+    ):  # fmt: skip
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         w = beam.w
@@ -71,17 +82,35 @@ class FieldWriter:
                 mesh_policy=dolfinx.io.VTXMeshPolicy.reuse,
             )  # fmt: skip
         self._comm = mesh.comm
+        self.names: list[str] = []  # of the frames written
+        self.load_names = list(loads)
+        self.loads_path = self.path.with_name(f"{self.path.stem}_loads.csv")
+        self._loads = None
+        if self.load_names:
+            self._loads = root_open(self.loads_path, "w", mesh.comm, newline="")  # noqa: SIM115
+            csv.writer(self._loads).writerow(["frame", "name", "time", *self.load_names])
+            self._loads.flush()
 
-    def write(self, t: float) -> None:
-        """Evaluate and append every field at time ``t``; flushed to disk at once."""
+    def write(
+        self, t: float, name: str | None = None, loads: Mapping[str, float] | None = None
+    ) -> None:
+        """Evaluate and append every field at time ``t`` as the frame ``name`` (default
+        ``step <k>``, k counted from 0), with the value of each load named at construction
+        (``loads``); flushed to disk at once."""
         for f, e in self._exprs:
             f.interpolate(e)
         for f in self.functions:
             self._file.write_function(f, t)
+        self.names.append(f"step {len(self.names)}" if name is None else name)
         self._file.flush()
         self._relayout()
         if self._vtx is not None:
             self._vtx.write(t)
+        if self._loads is not None:
+            row = [len(self.names) - 1, self.names[-1], repr(float(t))]
+            given = loads or {}
+            csv.writer(self._loads).writerow(row + [repr(float(given[n])) for n in self.load_names])
+            self._loads.flush()
 
     def close(self) -> None:
         self._file.close()
@@ -89,11 +118,14 @@ class FieldWriter:
         if self._vtx is not None:
             self._vtx.close()
             self._vtx = None
+        if self._loads is not None:
+            self._loads.close()
+            self._loads = None
 
     def _relayout(self) -> None:
         self._comm.Barrier()
         if self._comm.rank == 0:
-            meshio_layout(self.path)
+            meshio_layout(self.path, self.names)
         self._comm.Barrier()
 
     def __enter__(self):
@@ -106,12 +138,13 @@ class FieldWriter:
 _XI = "https://www.w3.org/2001/XInclude"
 
 
-def meshio_layout(path: str | Path) -> None:
+def meshio_layout(path: str | Path, names: Sequence[str] = ()) -> None:
     """Rewrite dolfinx's XDMF index (one temporal collection per function, topology type
     ``PolyLine``) in place as one temporal collection whose steps hold every function, with the
     type spelled ``Polyline``: the layout meshio's ``TimeSeriesReader`` reads (it takes only the
-    last collection and does not know ``PolyLine``) and ParaView reads as before. The HDF5 data
-    are not touched. A file already in that layout is left as it is."""
+    last collection and does not know ``PolyLine``) and ParaView reads as before. Step k is
+    named ``names[k]`` (``step <k>`` beyond them). The HDF5 data are not touched. A file already
+    in that layout is left as it is."""
     ET.register_namespace("xi", _XI)
     tree = ET.parse(path)
     domain = tree.getroot().find("Domain")
@@ -130,7 +163,8 @@ def meshio_layout(path: str | Path) -> None:
         merged = ET.Element("Grid", Name="fields", GridType="Collection", CollectionType="Temporal")
         for k in range(n):
             first = steps[0][k]
-            grid = ET.SubElement(merged, "Grid", Name=f"step {k}", GridType="Uniform")
+            name = names[k] if k < len(names) else f"step {k}"
+            grid = ET.SubElement(merged, "Grid", Name=name, GridType="Uniform")
             for child in first:
                 if child.tag != "Attribute":  # the mesh's xi:include and the time
                     grid.append(child)

@@ -221,18 +221,31 @@ class BendingTable(_CsvFile):
 
 class FieldSeries:
     """``fields.xdmf`` (+ ``fields.h5``) and, with ``vtx``, ``fields.bp``: u, θ, section forces and the
-    cell ids at every step, at the step's programme time (ParaView's time axis; ``steps.csv``
-    gives the loads at each time)."""
+    cell ids at every step, at the step's programme time as written in ``steps.csv`` (ParaView's
+    time axis), each frame named ``step <n>`` after its row there; ``fields_loads.csv`` beside
+    them gives the set-up's loads at every frame. With ``initial``, the series opens with the
+    unloaded strand at t = 0 (frame ``step 0``: zero displacement, loads 0), the state before
+    the first step of a run from the start."""
 
-    def __init__(self, folder: Path, problem, vtx: bool = True):
+    def __init__(self, folder: Path, problem, vtx: bool = True, initial: bool = True):
         from .output import FieldWriter, cell_function
 
         mesh, g = problem.cmesh.mesh, problem.geometry
         ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]
-        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids, vtx=vtx)
+        self.setup = problem.setup
+        self.loads = {f"{p}_{self.setup.units[p]}": p for p in self.setup.parameters}
+        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids, vtx=vtx,
+                                  loads=list(self.loads))  # fmt: skip
+        if initial:
+            self.writer.write(0.0, "step 0", self._loads())
+
+    def _loads(self) -> dict[str, float]:
+        return {name: self.setup.get(p) for name, p in self.loads.items()}
 
     def record(self, ctx: StepContext) -> None:
-        self.writer.write(ctx.step.time)
+        # the time as steps.csv writes it (12 digits), so that the two axes are equal
+        t = float(f"{ctx.step.time:.12g}")
+        self.writer.write(t, f"step {ctx.step.number}", self._loads())
 
     def close(self) -> None:
         self.writer.close()

@@ -11,15 +11,16 @@ the XDMF file itself.
 >>> steps[-1].mesh.warp_by_vector("displacement").plot()                   # doctest: +SKIP
 
 Every step carries its programme time (``steps.csv``'s ``time``: stage k runs from t = k to
-k + 1) and, where the folder has ``steps.csv``, the number of its row there. Arrays and units as
-in docs/outputs.md: points ``displacement`` (m) and ``rotation`` (rad); cells ``force`` (N),
-``moment`` (N m), ``axial_force`` (N), ``wire``, ``layer``.
+k + 1), the number of its row in ``steps.csv`` (0 for the unloaded strand at t = 0 that opens
+the series of a run from the start) and the set-up's loads there (``fields_loads.csv``). Arrays
+and units as in docs/outputs.md: points ``displacement`` (m) and ``rotation`` (rad); cells
+``force`` (N), ``moment`` (N m), ``axial_force`` (N), ``wire``, ``layer``.
 """
 
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -30,13 +31,16 @@ __all__ = ["FieldStep", "read_fields"]
 
 @dataclass(frozen=True)
 class FieldStep:
-    """One written step of a field series: its row ``step`` in ``steps.csv`` (None where the
-    folder has none), its programme ``time`` and the mesh with its point and cell arrays (a
-    ``meshio.Mesh``, or a ``pyvista.UnstructuredGrid``)."""
+    """One written step of a field series: its row ``step`` in ``steps.csv`` (0: the unloaded
+    strand at t = 0; None where the folder says neither), its programme ``time``, the mesh with
+    its point and cell arrays (a ``meshio.Mesh``, or a ``pyvista.UnstructuredGrid``) and the
+    set-up's ``loads`` there, named with their unit as in ``steps.csv`` (``tension_N``; empty
+    where the folder has no ``fields_loads.csv``)."""
 
     step: int | None
     time: float
     mesh: Any
+    loads: dict[str, float] = field(default_factory=dict)
 
 
 def _series(path: Path) -> Path:
@@ -50,42 +54,63 @@ def _series(path: Path) -> Path:
     return xdmf
 
 
-def _step_numbers(folder: Path) -> dict[float, int]:
-    """``steps.csv``'s step number at each programme time (empty without the file)."""
-    table = folder / "steps.csv"
+def _rows(table: Path) -> list[dict[str, str]]:
+    """The rows of a CSV file (none without the file)."""
     if not table.exists():
-        return {}
+        return []
     with open(table, newline="") as f:
-        return {float(row["time"]): int(row["step"]) for row in csv.DictReader(f)}
+        return list(csv.DictReader(f))
+
+
+def _frames(xdmf: Path) -> list[tuple[int | None, dict[str, float]]]:
+    """Per frame of the series, from ``<stem>_loads.csv``: its step number (its name ``step
+    <n>``) and its loads; empty without the file."""
+    frames = []
+    for row in _rows(xdmf.with_name(f"{xdmf.stem}_loads.csv")):
+        name = row.pop("name")
+        number = int(name.split()[-1]) if name.startswith("step ") else None
+        loads = {k: float(v) for k, v in row.items() if k not in ("frame", "time")}
+        frames.append((number, loads))
+    return frames
+
+
+def _step_number(numbers: dict[float, int], t: float) -> int | None:
+    """``steps.csv``'s step at programme time ``t`` (None if none)."""
+    # steps.csv keeps 12 significant digits of the time
+    return next((n for time, n in numbers.items() if np.isclose(time, t, 1e-10)), None)
 
 
 def read_fields(path: str | Path, pyvista: bool = False) -> list[FieldStep]:
     """Every step of the field series of the run folder ``path`` (or of the XDMF file it names),
     in the order written: a ``meshio.Mesh`` per step, or with ``pyvista`` a
-    ``pyvista.UnstructuredGrid`` whose field data also hold ``time`` (and ``step``).
+    ``pyvista.UnstructuredGrid`` whose field data also hold ``time``, ``step`` and the loads.
     Needs meshio and h5py (and pyvista for ``pyvista=True``)."""
     import meshio
 
     xdmf = _series(path)
-    numbers = _step_numbers(xdmf.parent)
+    numbers = {float(r["time"]): int(r["step"]) for r in _rows(xdmf.parent / "steps.csv")}
+    frames = _frames(xdmf)
     steps = []
     with meshio.xdmf.TimeSeriesReader(str(xdmf)) as reader:
         points, cells = reader.read_points_cells()
         for k in range(reader.num_steps):
             t, point_data, cell_data = reader.read_data(k)
             mesh = meshio.Mesh(points, cells, point_data=point_data, cell_data=cell_data)
-            # steps.csv keeps 12 significant digits of the time, the XDMF file all of them
-            step = next((n for time, n in numbers.items() if np.isclose(time, t, 1e-10)), None)
-            steps.append(FieldStep(step, float(t), _to_pyvista(mesh, t, step) if pyvista else mesh))
+            step, loads = frames[k] if k < len(frames) else (_step_number(numbers, t), {})
+            if pyvista:
+                mesh = _to_pyvista(mesh, t, step, loads)
+            steps.append(FieldStep(step, float(t), mesh, loads))
     return steps
 
 
-def _to_pyvista(mesh, time: float, step: int | None):
-    """The meshio ``mesh`` as a PyVista grid, its time (and step) in the field data."""
+def _to_pyvista(mesh, time: float, step: int | None, loads: dict[str, float]):
+    """The meshio ``mesh`` as a PyVista grid, its time (step and loads) in the field data."""
     import pyvista
 
     grid = pyvista.from_meshio(mesh)
     grid.field_data["time"] = [time]
     if step is not None:
         grid.field_data["step"] = [step]
+    for name, value in loads.items():
+        grid.field_data[name] = [value]
     return grid

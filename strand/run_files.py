@@ -32,6 +32,8 @@ OUTPUTS = {
     "fields.xdmf": "field time series for ParaView (with fields.h5): displacement, rotation, "
     "section forces, wire and layer ids; time t = k to k + 1 is stage k of steps.csv",
     "fields.h5": "the data of fields.xdmf",
+    "fields_loads.csv": "the set-up's loads at every frame of the field series (t = 0 the "
+    "unloaded strand, then each step of steps.csv)",
     "fields.bp": "the same fields as VTX (ADIOS2), a folder: ParaView",
     "contact_pairs.h5": "every contact pair's history: gap, normal force, traction, slip",
     "contact_points.xdmf": "the contact pairs' history as points, for ParaView",

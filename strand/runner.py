@@ -78,10 +78,11 @@ class Progress:
 
 def case_recorders(
     case: Case, problem: StrandProblem, folder: Path, parameter: str, key_states: KeyStates,
-    evaluator: CellEvaluator, stream, warnings: list[str],
+    evaluator: CellEvaluator, stream, warnings: list[str], fresh: bool = True,
 ) -> list[Recorder]:  # fmt: skip
     """The recorders the case's settings ask for, writing into ``folder``; ``parameter``: the
-    cycle's load parameter."""
+    cycle's load parameter; ``fresh``: the run starts from the unloaded strand (its field
+    series opens with it at t = 0), not from a restart or a sweep's tensioned state."""
     su = problem.setup
     unit = su.units[parameter]
     recorders = [
@@ -94,7 +95,7 @@ def case_recorders(
     if case.contact.model == "small":
         recorders.append(SmallSlidingMonitor(problem.model, stream, warnings))
     if case.output.fields:
-        recorders.append(FieldSeries(folder, problem, vtx=case.output.vtx))
+        recorders.append(FieldSeries(folder, problem, vtx=case.output.vtx, initial=fresh))
     if case.fatigue.outputs:
         initial = cell_results(problem.model, su.direction, evaluator)
         recorders += [
@@ -112,11 +113,12 @@ class Recording:
 
     Args:
         keep: the steps after which the state is kept in memory as ``result.kept``.
+        fresh: the run starts from the unloaded strand (not from a ``Start``).
     """
 
     def __init__(
         self, case: Case, problem: StrandProblem, programme: LoadProgramme, result: RunResult,
-        stream, keep: Callable[[RunStep], bool] | None = None,
+        stream, keep: Callable[[RunStep], bool] | None = None, fresh: bool = True,
     ):  # fmt: skip
         self.problem, self.programme, self.result, self.keep = problem, programme, result, keep
         self.case, self.stream = case, stream
@@ -124,7 +126,7 @@ class Recording:
         self.key_states = KeyStates()
         self.recorders = case_recorders(
             case, problem, result.folder, programme.cycle_parameter, self.key_states,
-            self.evaluator, stream, result.warnings,
+            self.evaluator, stream, result.warnings, fresh,
         )  # fmt: skip
         self.bending = next(r for r in self.recorders if isinstance(r, BendingTable))
         self.slip = next(r for r in self.recorders if isinstance(r, SlipTable))
@@ -215,7 +217,7 @@ def run_programme_with_outputs(
     ``RunResult.kept`` (a ``Checkpoint``; the last such step's)."""
     t_start = time.perf_counter() if t_start is None else t_start
     result = RunResult(folder, cycle_parameter=programme.cycle_parameter)
-    recording = Recording(case, problem, programme, result, stream, keep)
+    recording = Recording(case, problem, programme, result, stream, keep, fresh=start is None)
     result.setup_seconds = time.perf_counter() - t_start
     _take_programme(problem, programme, recording, start, stream)
     keys = recording.key_states

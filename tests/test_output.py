@@ -69,3 +69,27 @@ def test_cell_function_follows_input_cell_order():
     mid.interpolate(lambda x: x)
     xs = mid.x.array.reshape(-1, 3)[:, 0]
     np.testing.assert_allclose(f.x.array, np.floor(xs / 0.2))
+
+
+def test_frames_are_named_and_their_loads_written_beside_the_series(tmp_path):
+    """``write(t, name, loads)``: the XDMF frames carry the names given, and ``<stem>_loads.csv``
+    one row per frame with its name, time (as written) and the loads named at construction."""
+    import csv
+
+    case = cantilever(4)
+    path = tmp_path / "beam.xdmf"
+    with FieldWriter(path, case.beam, vtx=False, loads=["P_N"]) as writer:
+        writer.write(0.0, "step 0", {"P_N": 0.0})
+        for k, t in enumerate((1 / 3, 1.0), start=1):
+            case.force.value = [0.0, 30.0 * t, 0.0]
+            assert case.solver.solve().converged
+            writer.write(t, f"step {k}", {"P_N": 30.0 * t})
+    grids = ET.parse(path).getroot().findall(".//Grid[@CollectionType='Temporal']/Grid")
+    assert [g.get("Name") for g in grids] == ["step 0", "step 1", "step 2"]
+    assert [float(g.find("Time").get("Value")) for g in grids] == [0.0, 1 / 3, 1.0]
+    with open(writer.loads_path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert writer.loads_path.name == "beam_loads.csv"
+    assert [r["name"] for r in rows] == ["step 0", "step 1", "step 2"]
+    assert [float(r["time"]) for r in rows] == [0.0, 1 / 3, 1.0]
+    assert [float(r["P_N"]) for r in rows] == [0.0, 10.0, 30.0]

@@ -1,12 +1,13 @@
 """A run's field series read back: ``strand.results.read_fields`` (meshio, PyVista) and, where
-Debian's ParaView is installed, ``pvpython``; every step at its ``steps.csv`` time, with the
-values the run wrote there."""
+Debian's ParaView is installed, ``pvpython``; the unloaded strand at t = 0, then every step at
+its ``steps.csv`` time, with the values and loads the run wrote there."""
 
 from __future__ import annotations
 
 import csv
 import shutil
 import subprocess
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
@@ -38,22 +39,49 @@ def end_point(points: np.ndarray) -> int:
 
 
 def test_read_fields_gives_every_step_with_the_values_of_steps_csv(run):
-    """One mesh per row of steps.csv, numbered and timed as there; at each, the core end's axial
-    displacement is the run's end displacement (to the last digit written) and the wire's cell
-    ids are the geometry's (0 the core, 1-6 the layer)."""
+    """The unloaded strand at t = 0 (step 0: zero displacement and rotation, loads 0), then one
+    mesh per row of steps.csv, numbered and timed as there (the same times, to the last digit)
+    with its loads; at each, the core end's axial displacement is the run's end displacement
+    (to the last digit written) and the wire's cell ids are the geometry's (0 the core, 1-6 the
+    layer)."""
     out, steps = run
     fields = read_fields(out)
-    assert [f.step for f in fields] == [int(s["step"]) for s in steps]
-    np.testing.assert_allclose([f.time for f in fields], [float(s["time"]) for s in steps],
-                               rtol=1e-11)  # fmt: skip
-    for f, s in zip(fields, steps, strict=True):
+    assert [f.step for f in fields] == [0] + [int(s["step"]) for s in steps]
+    assert [f.time for f in fields] == [0.0] + [float(s["time"]) for s in steps]
+    first = fields[0]
+    assert set(first.mesh.point_data) | set(first.mesh.cell_data) == ARRAYS
+    assert np.all(first.mesh.point_data["displacement"] == 0.0)
+    assert np.all(first.mesh.point_data["rotation"] == 0.0)
+    for name in ("force", "moment", "axial_force"):
+        assert np.all(first.mesh.cell_data[name][0] == 0.0)
+    assert first.loads == {"tension_N": 0.0, "lateral_N": 0.0}
+    for f, s in zip(fields[1:], steps, strict=True):
         mesh = f.mesh
         assert set(mesh.point_data) | set(mesh.cell_data) == ARRAYS
         u = mesh.point_data["displacement"][end_point(mesh.points)]
         assert u[2] == pytest.approx(float(s["end_displacement_m"]), rel=1e-12, abs=1e-18)
+        assert f.loads == {name: pytest.approx(float(s[name]), rel=1e-12) for name in f.loads}
+        assert set(f.loads) == {"tension_N", "lateral_N"}
     wire = fields[0].mesh.cell_data["wire"][0].ravel()
     assert sorted(np.unique(wire)) == list(range(7))
     assert read_fields(out / "fields.xdmf")[-1].time == fields[-1].time
+
+
+def test_field_frames_are_named_and_timed_as_steps_csv(run):
+    """In fields.xdmf itself (what ParaView reads): frame ``step 0`` at t = 0, then frame
+    ``step n`` at the time of row n of steps.csv; fields_loads.csv lists the same frames."""
+    out, steps = run
+    grids = (
+        ET.parse(out / "fields.xdmf").getroot().findall(".//Grid[@CollectionType='Temporal']/Grid")
+    )
+    names = [g.get("Name") for g in grids]
+    times = [float(g.find("Time").get("Value")) for g in grids]
+    assert names == ["step 0"] + [f"step {s['step']}" for s in steps]
+    assert times == [0.0] + [float(s["time"]) for s in steps]
+    with open(out / "fields_loads.csv", newline="") as f:
+        frames = list(csv.DictReader(f))
+    assert [r["name"] for r in frames] == names
+    assert [float(r["time"]) for r in frames] == times
 
 
 def test_read_fields_as_pyvista_grids(run):
@@ -71,6 +99,9 @@ def test_read_fields_as_pyvista_grids(run):
                                   last.cell_data["axial_force"][0].ravel())  # fmt: skip
     assert grid.field_data["time"][0] == grids[-1].time
     assert grid.field_data["step"][0] == int(steps[-1]["step"])
+    for name in ("tension_N", "lateral_N"):
+        assert grid.field_data[name][0] == pytest.approx(float(steps[-1][name]), rel=1e-12)
+    assert grids[0].mesh.field_data["step"][0] == 0 and grids[0].time == 0.0
     warped = grid.warp_by_vector("displacement")
     np.testing.assert_allclose(warped.points, last.points + last.point_data["displacement"])
 
@@ -96,5 +127,5 @@ def test_paraview_opens_the_series_with_every_step_and_array(run, tmp_path):
     assert done.returncode == 0, done.stderr[-2000:]
     count, names = done.stdout.strip().splitlines()[-2:]
     n, last = count.split()
-    assert int(n) == len(steps) and float(last) == pytest.approx(float(steps[-1]["time"]))
+    assert int(n) == len(steps) + 1 and float(last) == pytest.approx(float(steps[-1]["time"]))
     assert ARRAYS <= set(names.split())

@@ -27,7 +27,16 @@ __all__ = [
     "setup_and_programme",
     "build_problem",
     "restart_from",
+    "LARGE_MESH",
+    "BYTES_PER_UNKNOWN",
+    "size_announcement",
 ]
+
+#: elements from which a run announces its mesh's size before building it
+LARGE_MESH = 1_000_000
+#: a run's peak memory per unknown (bytes), for that announcement: the default Cardinal case
+#: (129,492 unknowns) peaks at 871 MiB in a serial run (benchmarks/speed.py, docs/benchmarks.md)
+BYTES_PER_UNKNOWN = 7e3
 
 
 def settings_text(case: Case) -> str:
@@ -77,10 +86,25 @@ def setup_and_programme(case: Case):
     return kind.setup(case), kind.programme(case)
 
 
+def size_announcement(n_elements: int, n_unknowns: int) -> str:
+    """The line a mesh of more than ``LARGE_MESH`` elements is announced with: its elements and
+    unknowns, and the memory a run of it takes, roughly (``BYTES_PER_UNKNOWN``)."""
+    gigabytes = n_unknowns * BYTES_PER_UNKNOWN / 1e9
+    return (
+        f"strand: a large mesh: {n_elements:,} elements, {n_unknowns:,} unknowns; a run of it "
+        f"needs roughly {gigabytes:.2g} GB of memory (about {BYTES_PER_UNKNOWN / 1e3:g} kB per "
+        "unknown); a shorter [mesh] length or a larger h_max makes it smaller"
+    )
+
+
 def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme]:
     """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
-    one line about it on ``stream``."""
+    one line about it on ``stream``, and before the finite-element mesh is built, a line on its
+    size when it has more than ``LARGE_MESH`` elements."""
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
+    if len(geometry.cells) > LARGE_MESH:
+        print(size_announcement(len(geometry.cells), 6 * len(geometry.points)), file=stream,
+              flush=True)  # fmt: skip
     options = newton_options(case)
     setup, programme = setup_and_programme(case)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)

@@ -7,6 +7,8 @@ Normal laws give the normal force p(g) ≥ 0 (compression positive, g the gap, �
 and dp/dg; a pair counts as closed in the tangent for g ≤ 0 (pairs start at g = 0):
 
 * ``PenaltyLaw``: p = K_N⟨−g⟩ (the seed paper's);
+* ``LinePenaltyLaw``: the same per unit length of a line contact, K_N = k ℓ over each line pair's
+  tributary length ℓ (given by ``contact_terms``);
 * ``HertzPointLaw``: crossed cylinders, p = c δ^{3/2} (``strand.contact.hertz``);
 * ``HertzLineLaw``: parallel-axis cylinders, the approach of the axes under a line load.
 
@@ -24,7 +26,7 @@ else scaled back to μp t_tr/‖t_tr‖ (slip). The laws differ in K_T only:
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -35,6 +37,7 @@ from .hertz import compliance, mindlin_ratio, point_coefficient
 __all__ = [
     "NormalLaw",
     "PenaltyLaw",
+    "LinePenaltyLaw",
     "HertzPointLaw",
     "HertzLineLaw",
     "SmoothOnset",
@@ -83,6 +86,45 @@ class PenaltyLaw(NormalLaw):
 
     def stiffness(self, p: Array) -> Array:
         return np.broadcast_to(np.asarray(self.k, float), np.shape(p)).copy()
+
+
+@dataclass(frozen=True)
+class LinePenaltyLaw(NormalLaw):
+    """A penalty per unit length of a line contact: p = k ℓ ⟨−g⟩ for a line pair standing for a
+    tributary length ℓ (m) of the contact line, k in N/m² (one for all pairs or per pair).
+
+    ``contact_terms`` gives it its pairs' tributary lengths (``for_pairs``); the result is
+    ``PenaltyLaw(k * pairs.tributary)``, without the multiplication written by hand.
+    """
+
+    k_per_length: Array | float
+    tributary: Array | None = None
+
+    def for_pairs(self, tributary: Array) -> LinePenaltyLaw:
+        """This law on pairs of tributary lengths ``tributary`` (P,), m, all positive."""
+        tributary = np.asarray(tributary, dtype=float)
+        if not np.all(tributary > 0):
+            raise ValueError(
+                "LinePenaltyLaw is a penalty per unit length of line contacts: its pairs need "
+                "positive tributary lengths (line pairs; crossings take PenaltyLaw, N/m)"
+            )
+        return replace(self, tributary=tributary)
+
+    @property
+    def k(self) -> Array:
+        """K_N = k ℓ (P,), N/m."""
+        if self.tributary is None:
+            raise ValueError(
+                "LinePenaltyLaw has no tributary lengths yet: give it to contact_terms with the "
+                "line pairs (or call for_pairs(pairs.tributary))"
+            )
+        return np.asarray(self.k_per_length, float) * self.tributary
+
+    def force(self, g: Array) -> tuple[Array, Array]:
+        return normal_force(g, self.k)
+
+    def stiffness(self, p: Array) -> Array:
+        return np.broadcast_to(self.k, np.shape(p)).copy()
 
 
 class _ApproachLaw(NormalLaw):

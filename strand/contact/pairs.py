@@ -39,7 +39,7 @@ import numpy.typing as npt
 from .element import ContactGroup
 from .errors import ContactError
 from .kinematics import stencil_nodes
-from .laws import FrictionLaw, NormalLaw, hertz_mindlin
+from .laws import FrictionLaw, LinePenaltyLaw, NormalLaw, hertz_mindlin
 from .nodes import BeamNodes, _chunks, beam_nodes, chains, input_arrays
 
 __all__ = [
@@ -354,13 +354,19 @@ def contact_terms(
     """The contact element on ``pairs``: a ``PairTerms`` to give ``NonlinearProblem(terms=[...])``.
 
     Args:
-        normal_law: e.g. ``PenaltyLaw(k)`` (N/m, per pair or one for all) or ``hertz_laws``'s.
+        normal_law: e.g. ``PenaltyLaw(k)`` (N/m, per pair or one for all), for line pairs
+            ``LinePenaltyLaw(k)`` (N/m², given the pairs' tributary lengths here), or
+            ``hertz_laws``'s.
         friction_law: e.g. ``ElasticSlip(mu, g_lim)``; None: frictionless.
         normal: "director" (n from the nodes' rotated tangents, the default), "neighbour" (from
             the chords of the neighbouring nodes) or "frozen" (the initial normal).
         slip: "surface" (the surface points' relative motion) or "centreline" (the centre lines'
             closest points'; ``strand.contact.element``).
     """
+    if isinstance(normal_law, LinePenaltyLaw):
+        if not pairs.line:
+            raise ValueError("LinePenaltyLaw (N/m²) is for line pairs; crossings take PenaltyLaw")
+        normal_law = normal_law.for_pairs(pairs.tributary)
     stencils, positions = pairs.stencil(normal)
     return ContactGroup(
         stencils,

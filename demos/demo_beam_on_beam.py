@@ -23,7 +23,8 @@
 # its normal is the part of $x_b - x_a$ normal to beam a, its gap
 # $g = (x_b - x_a)\cdot n - r_a - r_b$, and it stands for a tributary length $\ell$ of the contact
 # line, with a penalty $p = k\,\ell \langle -g \rangle$: a bed of springs of stiffness $k$ per unit
-# length (a Winkler foundation), stiff enough here that the beams' gap, $q_c/k$, is negligible.
+# length (a Winkler foundation, `LinePenaltyLaw(k)`), stiff enough here that the beams' gap,
+# $q_c/k$, is negligible.
 # Units: SI.
 
 # +
@@ -40,7 +41,7 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.contact import PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
+from strand.contact import LinePenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.mesh import beam_space, polyline_mesh
 from strand.parallel import serial_only
 from strand.solver import NonlinearProblem
@@ -80,18 +81,27 @@ F = beam.residual(v) + q0 * v[2] * dx(1)
 
 # ## Line pairs and supports
 #
-# `candidate_pairs(..., line=True)` pairs every node of b within reach of a's surface. Both beams
-# are pinned at $x = 0$ and on rollers at $x = L$, and held against twisting. The load does not
-# depend on $w$, so the tangent is the beams' alone: given as `J`, it is the same form as a strand's
-# tangent, and FFCx's cache serves both with one compiled kernel (the default,
-# `ufl.derivative(F, w)`, carries the load's zero derivative and compiles a kernel of its own).
+# `candidate_pairs(..., line=True)` pairs every node of b within reach of a's surface, and
+# `LinePenaltyLaw(k)` gives each pair the stiffness $k\,\ell$ of its tributary length. Both beams
+# are pinned at $x = 0$ and on rollers at $x = L$, and held against twisting: dolfinx's
+# `locate_dofs_topological` on a component `V.sub(c)` gives that component's dofs at the end
+# vertices. The load does not depend on $w$, so the tangent is the beams' alone: given as `J`, it
+# is the same form as a strand's tangent, and FFCx's cache serves both with one compiled kernel
+# (the default, `ufl.derivative(F, w)`, carries the load's zero derivative and compiles a kernel
+# of its own).
 
 pairs = candidate_pairs(V, a, b, r_a, r_b, reach=1e-6, line=True)
 k_line = 1e10  # N/m²
-contact = contact_terms(pairs, PenaltyLaw(k_line * pairs.tributary))
-ends = np.r_[a[[0, -1]], b[[0, -1]]]
-bcs = [fem.dirichletbc(0.0, 6 * ends + c, V.sub(c)) for c in (1, 2, 3)]
-bcs.append(fem.dirichletbc(0.0, 6 * np.r_[a[0], b[0]], V.sub(0)))
+contact = contact_terms(pairs, LinePenaltyLaw(k_line))
+pins = mesh.locate_entities_boundary(domain, 0, lambda p: np.isclose(p[0], 0.0))
+ends = mesh.locate_entities_boundary(
+    domain, 0, lambda p: np.isclose(p[0], 0.0) | np.isclose(p[0], L)
+)
+bcs = [
+    fem.dirichletbc(0.0, fem.locate_dofs_topological(V.sub(c), 0, ends), V.sub(c))
+    for c in (1, 2, 3)
+]
+bcs.append(fem.dirichletbc(0.0, fem.locate_dofs_topological(V.sub(0), 0, pins), V.sub(0)))
 problem = NonlinearProblem(F, w, bcs, terms=[contact], J=ufl.derivative(beam.residual(v), w))
 result = problem.solve()
 print(f"Newton: {result.iterations} iterations, residual {result.residual:.1e} N")

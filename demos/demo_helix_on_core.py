@@ -40,11 +40,11 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
-from dolfinx import fem
+from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.contact import ElasticSlip, PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
+from strand.contact import ElasticSlip, LinePenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.mesh import beam_space, polyline_mesh
 from strand.parallel import serial_only
 from strand.solver import LoadStepper, NonlinearProblem
@@ -79,21 +79,36 @@ kappa = np.sin(alpha) ** 2 / r
 
 # ## Pairs, supports, load
 #
-# `candidate_pairs(..., line=True)` pairs every wire node within reach of the core's surface.
+# `candidate_pairs(..., line=True)` pairs every wire node within reach of the core's surface;
+# `LinePenaltyLaw(k)` gives each pair the stiffness $k\,\ell$ of its tributary length $\ell$.
 # The core is rigid here: all its nodes are prescribed. The wire is clamped at $A$ ($z = 0$); its
 # end $B$ is slid by $\delta$ along the helix, $u_B = \delta\,(0, \sin\alpha, \cos\alpha)$, and
 # is free to move radially and to rotate. Prescribing the motion about the axis keeps the helix
 # from unwinding: pulled by a force, a free end would turn under the torque $T r\sin\alpha$
 # about the axis and lower $\alpha$. Friction is off while the wire is tensioned to $T_0$, so
-# that its tension is uniform; it is switched on before sliding further.
+# that its tension is uniform; it is switched on before sliding further. dolfinx finds the
+# supported dofs: `locate_dofs_geometrical` on the beam space gives whole nodes (all six dofs),
+# `locate_dofs_topological` on a component `V.sub(c)` that component's dofs at given vertices.
 
 k_line, mu, g_lim = 5e9, 0.3, 1e-7  # N/m², -, m
 pairs = candidate_pairs(V, core, wire, r_c, r_w, reach=1e-6, line=True)
-contact = contact_terms(pairs, PenaltyLaw(k_line * pairs.tributary))
+contact = contact_terms(pairs, LinePenaltyLaw(k_line))
+
+
+def at(point):
+    """A dolfinx marker of the node at ``point``."""
+    return lambda p: np.isclose(np.linalg.norm(p.T - point, axis=1), 0.0)
+
+
 slide = fem.Constant(V.mesh, 0.0)
 along = [fem.Constant(V.mesh, 0.0), fem.Constant(V.mesh, 0.0)]  # δ sin α, δ cos α
-bcs = [fem.dirichletbc(np.zeros(6), np.r_[core, wire[:1]], V)]
-bcs += [fem.dirichletbc(along[i], 6 * wire[-1:] + 1 + i, V.sub(1 + i)) for i in (0, 1)]
+held = fem.locate_dofs_geometrical(V, lambda p: (np.hypot(p[0], p[1]) < r / 2) | at(x_wire[0])(p))
+end_B = mesh.locate_entities_boundary(V.mesh, 0, at(x_wire[-1]))  # a wire end: on the boundary
+bcs = [fem.dirichletbc(np.zeros(6), held, V)]  # the core and the wire's end A
+bcs += [
+    fem.dirichletbc(along[i], fem.locate_dofs_topological(V.sub(1 + i), 0, end_B), V.sub(1 + i))
+    for i in (0, 1)
+]
 
 
 def set_slide(delta: float) -> None:

@@ -8,7 +8,7 @@ tension``: the cycle's targets ``[load] cycle`` × ``tension_swing``, so that th
 load at midspan applied after the tension and held through the cycle; 0: none; the saddle's
 ``[load] saddle_length`` and ``[steps] lateral``, ``lateral_max`` apply), ``[steps]
 tension_swing`` and ``tension_swing_max`` (N). The set-up is the saddle test's
-(``strand.setups.saddle.SaddleTest``: z = 0 clamped, z = L a rigid end section pulled by a
+(``strand.setups.tension_cycle.TensionCycleTest``, a ``strand.setups.saddle.SaddleTest``: z = 0 clamped, z = L a rigid end section pulled by a
 force), whose end force is the tension plus the swing. Its reference: the fibre model (ends held
 against rotation, ``post.fibre_model``): the end displacement per unit end force L/EA and the
 wires' axial stress change E cos²α ΔT/EA per layer. The fatigue report's strand-level T–N check
@@ -23,10 +23,9 @@ from functools import partial
 import numpy as np
 
 from ..case import Case, CaseError
-from ..post import fibre_model, section_resultants
+from ..post import fibre_model
 from ..programme import LoadProgramme, Stage, cycle_stages
-from ..setups.base import quantity
-from ..setups.saddle import SaddleTest
+from ..setups.tension_cycle import TensionCycleState, TensionCycleTest, TensionSection
 from . import SetupKind, lookup
 
 __all__ = [
@@ -54,83 +53,6 @@ class TensionCycleSteps:
 
     tension_swing: float = 1e3  # N, first increment of each leg of the cycle
     tension_swing_max: float = 4e3  # N, largest increment
-
-
-@dataclass(frozen=True)
-class TensionCycleState:
-    """Loads and displacements of the tension cycle at one state."""
-
-    tension: float = quantity("N", "mean end force")
-    tension_swing: float = quantity("N", "end force less the mean tension")
-    end_force: float = quantity("N", "end force: tension + tension_swing")
-    lateral: float = quantity("N", "saddle load held at midspan")
-    deflection: float = quantity("m", "core's lateral displacement at midspan")
-    end_displacement: float = quantity("m", "axial displacement of the end section")
-
-    def progress(self) -> str:
-        """The measure a progress line shows."""
-        return f"u = {1e6 * self.end_displacement:6.1f} µm"
-
-
-@dataclass(frozen=True)
-class TensionSection:
-    """Resultants of the midspan section during the tension cycle."""
-
-    tension_swing: float = quantity("N")
-    end_force: float = quantity("N")
-    axial_sum: float = quantity("N", "Σ N_z over the section: equals the end force")
-    moment: float = quantity("Nm", "bending moment along the saddle's moment axis")
-
-
-class TensionCycleTest(SaddleTest):
-    """The saddle test whose end force is ``tension`` + ``tension_swing`` (N), the saddle load
-    ``lateral`` (N) held while the swing cycles."""
-
-    parameters = ("tension", "lateral", "tension_swing")
-    units = {"tension": "N", "lateral": "N", "tension_swing": "N"}
-    cycle_parameter = "tension_swing"
-    state_type = TensionCycleState
-    bending_type = TensionSection
-
-    def __init__(self, model, saddle_length: float = 0.02, direction=(1.0, 0.0, 0.0)):
-        super().__init__(model, saddle_length=saddle_length, direction=direction)
-        self._tension = self._swing = 0.0
-
-    def set(self, name: str, value: float) -> None:
-        self.check_parameter(name)
-        if name == "lateral":
-            super().set(name, value)
-            return
-        if name == "tension":
-            self._tension = value
-        else:
-            self._swing = value
-        self.tension_load.factor = self._tension + self._swing
-
-    def get(self, name: str) -> float:
-        self.check_parameter(name)
-        if name == "lateral":
-            return super().get(name)
-        return self._tension if name == "tension" else self._swing
-
-    @property
-    def tension(self) -> float:
-        return self._tension
-
-    def state(self) -> TensionCycleState:
-        return TensionCycleState(
-            self._tension, self._swing, self._tension + self._swing, self.lateral,
-            self.midspan_deflection(), self.end_displacement(),
-        )  # fmt: skip
-
-    def moment_curvature(self, cells, residual=None) -> TensionSection:
-        """The midspan section's axial force sum (N) and bending moment (N m, about the axis
-        e_z × ``direction``)."""
-        L = self.model.geometry.length
-        moment, force = section_resultants(self.model, cells, L / 2)
-        b = np.cross([0.0, 0.0, 1.0], self.direction)
-        return TensionSection(self._swing, self._tension + self._swing, float(force[2]),
-                              -float(moment @ b))  # fmt: skip
 
 
 @dataclass(frozen=True)

@@ -79,8 +79,11 @@ def _block_points(model) -> npt.NDArray[np.int64]:
     return out
 
 
-def capture(problem, number: int, time: float, position: Position) -> Checkpoint:
-    """The problem's current (converged, committed) state. Collective."""
+def capture(
+    problem, number: int, time: float, position: Position, residual: Array | None = None
+) -> Checkpoint:
+    """The problem's current (converged, committed) state. Collective. ``residual``: its
+    unconstrained residual in the geometry's point order, if already gathered (else computed)."""
     model, setup = problem.model, problem.setup
     ramp = position.ramp
     dw = None
@@ -92,7 +95,7 @@ def capture(problem, number: int, time: float, position: Position) -> Checkpoint
         None if ramp is None or ramp.previous is None else ramp.previous[0],
         model.node_values(), dw, model.gather_pairs([g.history_arrays() for g in model.contact]),
         model.same_layer_history(),
-        model.gather_nodes(problem.solver.unconstrained_residual()),
+        model.gather_nodes(problem.solver.unconstrained_residual()) if residual is None else residual,
     )  # fmt: skip
 
 

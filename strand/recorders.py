@@ -99,7 +99,7 @@ class StepContext:
             from .checkpoint import capture
 
             self._checkpoint = capture(self.problem, self.step.number, self.step.time,
-                                       self.position)  # fmt: skip
+                                       self.position, self.residual)  # fmt: skip
         return self._checkpoint
 
     @property

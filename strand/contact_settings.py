@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 from .cable import CableError
-from .contact.element import SLIP, resolve_normal
+from .contact.element import check_slip, resolve_normal
 from .contact.errors import ContactError
 from .same_layer import SAME_LAYER
 
@@ -73,6 +73,7 @@ class ContactSettings:
     def __post_init__(self):
         try:
             object.__setattr__(self, "normal", resolve_normal(self.normal, self.friction))
+            check_slip(self.slip)
         except ContactError as e:  # strand.case reports CableError as a [contact] error
             raise CableError(str(e)) from None
         if self.compliance not in COMPLIANCES:
@@ -94,8 +95,6 @@ class ContactSettings:
                 f'contact same_layer = "{self.same_layer}" needs model = "small" (same-layer '
                 "pairs are not built for large sliding yet)"
             )
-        if self.slip not in SLIP:
-            raise CableError(f"contact slip {self.slip!r} is unknown; choose {' or '.join(SLIP)}")
         if self.slip != "surface" and self.model != "small":
             raise CableError(
                 f'contact slip = "{self.slip}" needs model = "small" (large sliding measures the '

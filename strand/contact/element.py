@@ -37,7 +37,7 @@ from .kinematics import (
 )
 from .laws import FrictionLaw, NormalLaw
 
-__all__ = ["SLIP", "ContactGroup", "resolve_normal"]
+__all__ = ["SLIP", "ContactGroup", "check_slip", "resolve_normal"]
 
 #: the slip measures: the surface points' relative motion, or the centre lines' closest points'
 SLIP = ("surface", "centreline")
@@ -59,6 +59,13 @@ def resolve_normal(normal: str, friction: bool) -> str:
             f"contact normal {normal!r} is unknown; choose auto, {', '.join(NORMALS)}"
         )
     return normal
+
+
+def check_slip(slip: str) -> str:
+    """``slip`` if it names one of ``SLIP``; raises ``ContactError`` otherwise."""
+    if slip not in SLIP:
+        raise ContactError(f"contact slip {slip!r} is unknown; choose {' or '.join(SLIP)}")
+    return slip
 
 
 class ContactGroup(PairGroup):
@@ -94,8 +101,7 @@ class ContactGroup(PairGroup):
         initial_gap=None,
         slip: str = "surface",
     ):
-        if slip not in SLIP:
-            raise ContactError(f"contact slip {slip!r} is unknown; choose {' or '.join(SLIP)}")
+        check_slip(slip)
         if slip == "centreline" and tangent0 is None:
             raise ValueError("the centre-line slip needs the pairs' initial tangents")
         super().__init__(stencils, normal_law, friction_law, normal0, index)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-__all__ = ["CableError", "Wire", "Layer", "Cable", "load_cable", "cardinal"]
+__all__ = ["CableError", "Wire", "Layer", "Cable", "load_cable", "cardinal", "judge120"]
 
 
 class CableError(ValueError):
@@ -187,7 +187,16 @@ def load_cable(path: str | Path) -> Cable:
         raise CableError(f"{path}: {e}") from None
 
 
+def _built_in(file: str) -> Cable:
+    return cable_from_dict(tomllib.loads(resources.files("strand.data").joinpath(file).read_text()))
+
+
 def cardinal() -> Cable:
     """Cardinal ACSR 54/7 (1 + 6 steel, 12/18/24 aluminium), the seed paper's conductor."""
-    text = resources.files("strand.data").joinpath("cardinal.toml").read_text()
-    return cable_from_dict(tomllib.loads(text))
+    return _built_in("cardinal.toml")
+
+
+def judge120() -> Cable:
+    """A 120-wire all-steel spiral strand of 61 mm (1 + 7 + 17 + 14 + 21 + 27 + 33), Judge et al.
+    (2012); its sources and assumptions are in ``strand/data/judge120.toml``."""
+    return _built_in("judge120.toml")

@@ -117,6 +117,11 @@ def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme
         file=stream,
         flush=True,
     )
+    name, flops = problem.ordering
+    if flops:
+        others = ", ".join(f"{k.upper()} {v:.2g}" for k, v in flops.items() if k != name)
+        print(f"MUMPS ordering {name.upper()}: {flops[name]:.2g} operations per LU ({others})",
+              file=stream, flush=True)  # fmt: skip
     if not case.contact.friction and case.contact.normal == "frozen":
         print(
             "frictionless: contact normals frozen at t = 0 (geometry-following normals do not "

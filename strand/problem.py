@@ -14,6 +14,7 @@ from dataclasses import replace
 import numpy as np
 import numpy.typing as npt
 from mpi4py import MPI
+from petsc4py import PETSc
 
 from .contact_settings import ContactSettings
 from .geometry import StrandGeometry
@@ -23,10 +24,15 @@ from .setups.base import TestSetup
 from .setups.saddle import SaddleTest
 from .solver import NewtonOptions, NonlinearProblem
 from .solver.convergence import STALL_AFTER
+from .solver.ordering import ORDERINGS, cheapest_ordering
 
 __all__ = ["StrandProblem"]
 
 Array = npt.NDArray[np.float64]
+
+#: unknowns from which the MUMPS ordering is chosen by trial: below, an LU takes ~0.1 s or less
+#: and the trial factorisations would cost more than the choice saves
+ORDERING_TRIAL_SIZE = 50_000
 
 
 class StrandProblem:
@@ -51,9 +57,10 @@ class StrandProblem:
     ):
         self.model = StrandModel(geometry, contact, comm)
         self.setup = setup(self.model)
-        # MUMPS ordering: PORD factorises the Cardinal tangent in 0.53 s against 0.71 s for the
-        # default choice (METIS), the same accuracy (2-core machine, 129,492 unknowns)
-        mumps = {"mat_mumps_icntl_7": 4}
+        # MUMPS ordering: PORD unless the case sets one; a large strand's pattern is factorised
+        # with PORD and AMF once, and the cheaper kept (``strand.solver.ordering``)
+        user = options.petsc if options is not None else {}
+        mumps = {"mat_mumps_icntl_7": ORDERINGS["pord"]}
         if comm.size > 1:
             # distributed, MUMPS schedules fronts dynamically and its workspace estimate (+20 %)
             # falls short at random (INFOG(1) = −9, "out of memory" at the first factorisation in
@@ -70,6 +77,16 @@ class StrandProblem:
             options=options,
             monitor=monitor,
         )
+        #: the MUMPS ordering (name) and, when chosen by trial, every candidate's LU operations
+        self.ordering: tuple[str, dict[str, float]] = ("pord", {})
+        n_unknowns = 6 * self.model.V.dofmap.index_map.size_global
+        if "mat_mumps_icntl_7" in user:
+            names = {v: k for k, v in ORDERINGS.items()}
+            self.ordering = (names.get(int(user["mat_mumps_icntl_7"]), "case's"), {})
+        elif n_unknowns >= ORDERING_TRIAL_SIZE:
+            self.ordering = cheapest_ordering(self.solver.A)
+            prefix = self.solver.solver.getOptionsPrefix()
+            PETSc.Options()[f"{prefix}mat_mumps_icntl_7"] = ORDERINGS[self.ordering[0]]
 
     # the model's parts, for short access
     @property

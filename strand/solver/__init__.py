@@ -24,7 +24,14 @@ tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and it
 from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
 from .interrupt import Interrupt
 from .problem import NonlinearProblem
-from .stepping import LoadStepFailure, LoadStepper, RampState, RunInterrupted, StepRecord
+from .stepping import (
+    ErrorControl,
+    LoadStepFailure,
+    LoadStepper,
+    RampState,
+    RunInterrupted,
+    StepRecord,
+)
 from .terms import NodalLoad, PairTerms
 
 __all__ = [
@@ -35,6 +42,7 @@ __all__ = [
     "NewtonResult",
     "NewtonConvergence",
     "LoadStepper",
+    "ErrorControl",
     "StepRecord",
     "RampState",
     "LoadStepFailure",

@@ -116,8 +116,13 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._kept_residual: npt.NDArray[np.float64] | None = None  # ``keep_residual``
         #: wall time (s) in: residual and Jacobian callbacks (everything they do), the pair terms'
         #: evaluation (inside the callbacks), their insertion into PETSc objects (idem), and the
-        #: whole of ``solve`` (callbacks + LU + SNES overhead)
-        self.timings = {"residual": 0.0, "jacobian": 0.0, "terms": 0.0, "insert": 0.0, "solve": 0.0}
+        #: whole of ``solve`` (callbacks + LU + SNES overhead); and counts: the callbacks
+        #: (``residual_calls``, ``jacobian_calls``) and the pair terms (stencils) evaluated with
+        #: their tangent (``tangent_terms``) or without (``residual_terms``)
+        self.timings = {
+            "residual": 0.0, "jacobian": 0.0, "terms": 0.0, "insert": 0.0, "solve": 0.0,
+            "residual_calls": 0, "jacobian_calls": 0, "tangent_terms": 0, "residual_terms": 0,
+        }  # fmt: skip
 
     @property
     def w(self) -> fem.Function:
@@ -132,13 +137,15 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
     # -- SNES callbacks --------------------------------------------------------------------------
     def _residual(self, snes, x, b):
         t0 = time.perf_counter()
+        self.timings["residual_calls"] += 1
         x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(x, self._u)
         if not self._all_finite() or self.stop_requested():
             # a diverged iterate, or Ctrl-C: SNES stops (DIVERGED_FUNCTION_NANORINF)
             b.set(np.nan)
             return
-        terms = self._pairs.evaluate(self._u.x.array, self.timings)
+        # the residual alone: a line search's trial points need no tangent
+        terms = self._pairs.evaluate(self._u.x.array, self.timings, tangent=False)
         t1 = time.perf_counter()
         with b.localForm() as bl:
             bl.set(0.0)
@@ -153,6 +160,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
 
     def _jacobian(self, snes, x, J, P):
         t0 = time.perf_counter()
+        self.timings["jacobian_calls"] += 1
         x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(x, self._u)
         terms = self._pairs.evaluate(self._u.x.array, self.timings)
@@ -223,7 +231,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         b = fem_petsc.create_vector(self.V)
         with b.localForm() as bl:
             bl.set(0.0)
-            terms = self._pairs.evaluate(self._u.x.array, self.timings)
+            terms = self._pairs.evaluate(self._u.x.array, self.timings, tangent=False)
             self._pairs.add_residuals(bl.array_w, terms, reactions=True)
         fem_petsc.assemble_vector(b, self._F)
         b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)

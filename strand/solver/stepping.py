@@ -1,5 +1,12 @@
 """Adaptive load stepping on a ``NonlinearProblem``: steps that grow after easy solves and are
-halved and retried after failures, with the records of the converged steps."""
+halved and retried after failures, with the records of the converged steps.
+
+``ErrorControl`` (optional) sizes the steps from an estimate of each step's load-step error
+instead: the miss of the secant predictor w_pred = w_n + (Δλ/Δλ_prev) Δw_prev, e = max over the
+nodes of |w_{n+1} − w_pred| on the translations (m). It is the local error of first-order path
+following, e = ½ w'' Δλ (Δλ + Δλ_prev) + O(Δλ³) on a smooth path, hence the next increment
+Δλ (safety √(tol/e)), clamped.
+"""
 
 from __future__ import annotations
 
@@ -9,11 +16,22 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
+from mpi4py import MPI
 
 if TYPE_CHECKING:
     from .problem import NonlinearProblem
 
-__all__ = ["LoadStepper", "StepRecord", "RampState", "LoadStepFailure", "RunInterrupted"]
+__all__ = [
+    "LoadStepper",
+    "ErrorControl",
+    "StepRecord",
+    "RampState",
+    "LoadStepFailure",
+    "RunInterrupted",
+    "predictor_miss",
+]
+
+Array = npt.NDArray[np.float64]
 
 
 @dataclass
@@ -22,7 +40,7 @@ class RampState:
     and unknowns increments (local array) of that step (the secant predictor's), if any."""
 
     step: float
-    previous: tuple[float, npt.NDArray[np.float64]] | None
+    previous: tuple[float, Array] | None
 
 
 @dataclass
@@ -35,8 +53,77 @@ class StepRecord:
     residuals: list[float]
     seconds: float
     cuts: int
-    #: Newton iterations spent in the attempts that failed before it (the cuts' cost)
+    #: Newton iterations spent in the attempts that failed (or were rejected) before it
     failed_iterations: int = 0
+    #: the step's load-step error estimate, the secant predictor's miss (m; ``predictor_miss``);
+    #: nan for the first step of a ramp, which has no predictor
+    error: float = float("nan")
+    #: attempts retried at the same increment with the predictor switched (``retry``)
+    retries: int = 0
+    #: converged attempts rejected for a miss over ``ErrorControl.reject_factor`` × tol
+    rejections: int = 0
+
+
+@dataclass(frozen=True)
+class ErrorControl:
+    """Load increments from the load-step error estimate (``predictor_miss``, m).
+
+    After a converged step of increment Δλ with miss e, the next increment is
+    Δλ clamp(safety √(tol/e), shrink_min, grow_max) (e ∝ Δλ² on a smooth path), at most
+    ``grow_after_cut`` times Δλ after a step that needed cuts (a larger one just failed).
+    A step whose miss exceeds ``reject_factor`` × tol is rejected and retried at the
+    increment this gives (inf: never), unless it is already at ``min_step``.
+
+    ``tol`` = 1 µm: 1e-3 of a millimetre of midspan deflection, and a fifth of the elastic slip
+    over which a frictional pair builds its traction (the penalty law's default g_lim, 5 µm),
+    so that a step does not carry pairs through their stick–slip transition with an error of
+    the transition's size.
+    """
+
+    tol: float = 1e-6
+    safety: float = 0.9
+    shrink_min: float = 0.2
+    grow_max: float = 2.0
+    grow_after_cut: float = 1.0
+    reject_factor: float = np.inf
+
+    def __post_init__(self):
+        if not (self.tol > 0 and 0 < self.shrink_min <= 1 <= self.grow_max):
+            raise ValueError("ErrorControl: need tol > 0 and 0 < shrink_min <= 1 <= grow_max")
+        if self.reject_factor < 1:
+            raise ValueError("ErrorControl: reject_factor must be at least 1")
+
+    def factor(self, error: float) -> float:
+        """The next increment over this one for a step of miss ``error`` (m)."""
+        if error <= 0:
+            return self.grow_max
+        ideal = self.safety * np.sqrt(self.tol / error)
+        return float(np.clip(ideal, self.shrink_min, self.grow_max))
+
+    def rejects(self, error: float) -> bool:
+        """Whether a step of miss ``error`` (m) is rejected."""
+        return bool(error > self.reject_factor * self.tol)
+
+
+def predictor_miss(increment: float, dw: Array, previous: tuple[float, Array]) -> float:
+    """The secant predictor's miss on this rank: max over the nodes of |Δw − (Δλ/Δλ_p) Δw_p|
+    on the translations (m), for a step of load increment Δλ = ``increment`` and unknowns
+    increment ``dw`` (local, (u, θ) per node) after one of ``previous`` = (Δλ_p, Δw_p).
+
+    The max-norm, not an RMS: the quantities read (deflections, pair slips) are local, and an
+    RMS would dilute the few pairs that change state as the mesh grows. Rotations (rad) are
+    left out, so that ``ErrorControl.tol`` is a length."""
+    load_step, dw_prev = previous
+    miss = (dw - (increment / load_step) * dw_prev).reshape(-1, 6)[:, :3]
+    return float(np.abs(miss).max(initial=0.0))
+
+
+def _all_ranks_max(solver, value: float) -> float:
+    """``value``'s max over the ranks that share ``solver.w`` (a dolfinx ``Function``; for
+    unknowns without a function space: ``value``)."""
+    space = getattr(solver.w, "function_space", None)
+    comm = space.mesh.comm if space is not None else None
+    return comm.allreduce(value, op=MPI.MAX) if comm is not None and comm.size > 1 else value
 
 
 class LoadStepFailure(RuntimeError):
@@ -61,6 +148,12 @@ class LoadStepper:
             last two converged states (not across ramps, whose direction may reverse). Off by
             default: the predictor's initial residual scales the relative tolerance ``rtol``, so
             use it with an absolute tolerance that governs.
+        controller: an ``ErrorControl``: after the first step of a ramp, it sizes the
+            increments (``growth`` and ``easy_iterations`` then apply to the first step only).
+            None (the default): the rule above.
+        retry: after a failed attempt, try the same increment once more from the last
+            converged state with the predictor switched (off if ``extrapolate``, else on)
+            before halving; once per step, and only where a predictor exists.
     """
 
     def __init__(
@@ -73,6 +166,8 @@ class LoadStepper:
         easy_iterations: int = 6,
         on_step: Callable[[StepRecord], None] | None = None,
         extrapolate: bool = False,
+        controller: ErrorControl | None = None,
+        retry: bool = False,
     ):
         if not (0 < min_step <= first_step):
             raise ValueError("LoadStepper: need 0 < min_step <= first_step")
@@ -84,6 +179,8 @@ class LoadStepper:
         self.easy_iterations = easy_iterations
         self.on_step = on_step
         self.extrapolate = extrapolate
+        self.controller = controller
+        self.retry = retry
         self.history: list[StepRecord] = []
         #: the ramp's state after its last converged step (``ramp(resume=...)`` continues it)
         self.state: RampState | None = None
@@ -103,7 +200,9 @@ class LoadStepper:
         sign = 1.0 if end >= start else -1.0
         current = start
         step = min(self.step, self.max_step)
-        cuts, failed = 0, 0  # step cuts and their Newton iterations since the last success
+        # since the last success: step cuts, their Newton iterations, retries, rejections
+        cuts, failed, retries, rejections = 0, 0, 0, 0
+        predict = self.extrapolate  # start the next attempt from the secant predictor
         w = self.solver.w.x.array
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
         if resume is not None:
@@ -117,20 +216,33 @@ class LoadStepper:
             trial = current + sign * min(step, abs(end - current))
             set_load(trial)
             start_w = w.copy()
-            if self.extrapolate and previous is not None:  # secant predictor along the ramp
+            if predict and previous is not None:  # secant predictor along the ramp
                 w += (trial - current) / previous[0] * previous[1]
             result = self.solver.solve()
             if result.converged:
-                previous = (trial - current, w - start_w)
+                h, dw = trial - current, w - start_w
+                error, proposal = self._estimate(h, dw, previous, cuts)
+                if proposal is not None and self._rejects(error, abs(h), proposal):
+                    self.solver.rollback()
+                    set_load(current)
+                    step = proposal
+                    failed += result.iterations
+                    rejections += 1
+                    predict = self.extrapolate
+                    continue
+                previous = (h, dw)
                 self.solver.commit()
                 rec = StepRecord(
                     stage, trial, result.iterations, result.residuals, result.seconds, cuts,
-                    failed,
+                    failed, error, retries, rejections,
                 )  # fmt: skip
                 current = trial
-                if result.iterations <= self.easy_iterations:
+                if proposal is not None:
+                    step = proposal
+                elif result.iterations <= self.easy_iterations:
                     step = min(step * self.growth, self.max_step)
-                cuts, failed = 0, 0
+                cuts, failed, retries, rejections = 0, 0, 0, 0
+                predict = self.extrapolate
                 self.state = RampState(step, previous)
                 records.append(rec)
                 self.history.append(rec)
@@ -141,9 +253,14 @@ class LoadStepper:
                 set_load(current)
                 if self.solver.stop_requested():
                     continue  # not a failure: stop at the top of the loop
+                failed += result.iterations
+                if self.retry and retries == 0 and previous is not None:
+                    retries += 1
+                    predict = not self.extrapolate  # the same increment, predictor switched
+                    continue
+                predict = self.extrapolate
                 step /= 2
                 cuts += 1
-                failed += result.iterations
                 if step < self.min_step:
                     raise LoadStepFailure(
                         f"{stage}: no convergence from {current:.6g} towards {trial:.6g} "
@@ -154,3 +271,25 @@ class LoadStepper:
                     )
         self.step = step
         return records
+
+    def _estimate(
+        self, h: float, dw: Array, previous: tuple[float, Array] | None, cuts: int
+    ) -> tuple[float, float | None]:
+        """A converged step's error estimate (m; nan for a ramp's first step) and, with a
+        controller, the next increment it gives (None without), within [min_step, max_step];
+        ``h``, ``dw``: the step's load and unknowns increments, ``cuts``: the cuts it took."""
+        if previous is None:
+            return float("nan"), None
+        error = _all_ranks_max(self.solver, predictor_miss(h, dw, previous))
+        c = self.controller
+        if c is None:
+            return error, None
+        factor = c.factor(error)
+        if cuts > 0:
+            factor = min(factor, c.grow_after_cut)
+        return error, float(np.clip(abs(h) * factor, self.min_step, self.max_step))
+
+    def _rejects(self, error: float, increment: float, proposal: float) -> bool:
+        """Whether the controller rejects a converged step of ``increment``: not if its
+        retry, at ``proposal``, would be no smaller (at ``min_step``)."""
+        return self.controller.rejects(error) and proposal < increment

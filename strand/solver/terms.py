@@ -5,7 +5,8 @@ residual vectors and tangent blocks at once (numpy arrays): the ``PairTerms`` pr
 ``create_extended_matrix`` gives the Jacobian a sparsity pattern that holds the stencils, and
 ``PairAssembler`` adds the terms to what dolfinx assembles from the forms, with the Dirichlet dofs
 masked and the stencils' coupling to prescribed motions lifted onto the free rows (as dolfinx's
-``apply_lifting`` does for the forms).
+``apply_lifting`` does for the forms). A residual alone (a line search's trial point) is evaluated
+without the tangent blocks; the Jacobian adds them.
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ class PairTerms(Protocol):
     current iterate (ghosts included) and returns the residual contributions f (P, 6k) and, when
     ``jacobian`` is true, the tangent blocks K = ∂f/∂w (P, 6k, 6k), or None for state-independent
     terms. Each rank returns each term once. ``commit``/``rollback`` accept or discard the history
-    built since the last converged step.
+    built since the last converged step. ``evaluate`` may be called at one w without, then with
+    the tangent: the residual must be the same (a function of w and the committed history).
 
     A term set whose blocks are sparse within the stencil may declare ``dofs`` (m,): the positions
     (in 0..6k) of the stencil dofs that f (P, m) and K (P, m, m) hold; the others are zero and are
@@ -104,18 +106,28 @@ def create_extended_matrix(J: fem.Form, stencils: Sequence[npt.ArrayLike]) -> PE
 class EvaluatedTerms(NamedTuple):
     """One term set at one state: local dof indices ``idx`` (P, m), residuals ``f`` (P, m) and
     tangents ``K`` (P, m, m) with the Dirichlet dofs masked (and lifted), the stencils ``rows``
-    touching a Dirichlet dof and their unmasked residuals ``f_rows`` (for the reactions)."""
+    touching a Dirichlet dof and their unmasked residuals ``f_rows`` (for the reactions).
+    ``tangent``: whether the tangent was asked for (K None then means a state-independent set)."""
 
     idx: npt.NDArray[np.int32]
     f: Array
     K: Array | None
     rows: npt.NDArray[np.intp]
     f_rows: Array
+    tangent: bool = True
 
 
 class PairAssembler:
     """The pair terms of a problem with Dirichlet conditions ``bcs`` on the blocked space ``V``:
-    evaluates them once per state, masks them, and adds them to a vector or a matrix."""
+    evaluates them once per state, masks them, and adds them to a vector or a matrix.
+
+    A residual alone is evaluated without the tangent blocks (``evaluate(..., tangent=False)``),
+    except for a term set whose stencils touch a Dirichlet dof that is not yet at its prescribed
+    value: its lifting needs K there, so it is evaluated whole, and the residual is the one the
+    full evaluation gives. A later request for the tangent at the same state evaluates the sets
+    that lack it, once (a set's ``evaluate`` must then give the same residual again: a function
+    of the unknowns and the committed history).
+    """
 
     def __init__(
         self, terms: Sequence[PairTerms], bcs: Sequence[fem.DirichletBC], V: fem.FunctionSpace
@@ -132,41 +144,69 @@ class PairAssembler:
         self._cache: tuple[Array, list[EvaluatedTerms]] | None = None
         self._layouts: list | None = None
 
-    def evaluate(self, wl: Array, timings: dict[str, float]) -> list[EvaluatedTerms]:
-        """Every term set at the local unknowns ``wl`` (ghosts included), Dirichlet dofs masked;
-        the seconds spent go to ``timings["terms"]``. Evaluated once per state: SNES asks for
-        the residual, then the Jacobian at the same w."""
+    def evaluate(
+        self, wl: Array, timings: dict[str, float], tangent: bool = True
+    ) -> list[EvaluatedTerms]:
+        """Every term set at the local unknowns ``wl`` (ghosts included), Dirichlet dofs masked,
+        with its tangent blocks if ``tangent``; the seconds spent go to ``timings["terms"]``.
+        Each set is evaluated once per state (SNES asks for the residual, then the Jacobian at
+        the same w), and a second time only to add the tangent it was first evaluated without.
+        Counts the terms (stencils) evaluated with their tangent in ``timings["tangent_terms"]``,
+        those evaluated without in ``timings["residual_terms"]``."""
+        cached = None
         if self._cache is not None and np.array_equal(self._cache[0], wl):
-            return self._cache[1]
+            cached = self._cache[1]
+            if not tangent or all(e.tangent for e in cached):
+                return cached
         t0 = time.perf_counter()
         wn = wl.reshape(-1, 6)
+        layouts = self._term_layouts()
+        # g − w at the Dirichlet dofs, for the stencils that touch one (few: rows)
+        lift = self._prescribed_increment(wl) if any(len(lay[1]) for lay in layouts) else None
         out = []
-        lift = None
-        for t, (idx, rows, mask, ghosts) in zip(self.terms, self._term_layouts(), strict=True):
-            with np.errstate(all="ignore"):  # a wild iterate's inf/nan stops SNES, then a cut
-                f, K = t.evaluate(wn, True)
-            if len(ghosts):  # owned_only: the owner of their first node adds these
-                f = f.copy()
-                f[ghosts] = 0.0
-                if K is not None:
-                    K = K.copy()
-                    K[ghosts] = 0.0
-            f_rows = f[rows].copy()  # unmasked, for the reactions
-            if len(rows):  # only the few stencils that touch a Dirichlet dof
-                if K is not None:
-                    if lift is None:
-                        lift = self._prescribed_increment(wl)
-                    # lifting, as dolfinx's apply_lifting does for the forms: the free rows
-                    # get K_fb (g − w_b), so that the step that moves the prescribed dofs to
-                    # their values moves the others with them (Newton stays quadratic)
-                    d = np.where(mask, lift[idx[rows]], 0.0)
-                    f[rows] += np.einsum("pij,pj->pi", K[rows], d)
-                    K[rows] = np.where(mask[:, :, None] | mask[:, None, :], 0.0, K[rows])
-                f[rows] = np.where(mask, 0.0, f[rows])
-            out.append(EvaluatedTerms(idx, f, K, rows, f_rows))
+        for i, (t, layout) in enumerate(zip(self.terms, layouts, strict=True)):
+            if cached is not None and cached[i].tangent:
+                out.append(cached[i])
+            else:
+                out.append(self._evaluate_set(t, layout, wn, lift, tangent))
+                key = "tangent_terms" if out[-1].tangent else "residual_terms"
+                timings[key] = timings.get(key, 0) + len(layout[0])
         self._cache = (wl.copy(), out)
         timings["terms"] += time.perf_counter() - t0
         return out
+
+    @staticmethod
+    def _evaluate_set(
+        t: PairTerms, layout: tuple, wn: Array, lift: Array | None, tangent: bool
+    ) -> EvaluatedTerms:
+        """One term set at the nodal unknowns ``wn`` (n_blocks, 6), masked and lifted; with its
+        tangent if ``tangent`` or if its lifting needs it (``lift``: g − w, local)."""
+        idx, rows, mask, ghosts = layout
+        d = None
+        if len(rows):  # only the few stencils that touch a Dirichlet dof
+            d = np.where(mask, lift[idx[rows]], 0.0)
+            tangent = tangent or bool(np.any(d != 0.0))  # the lifting needs K
+        with np.errstate(all="ignore"):  # a wild iterate's inf/nan stops SNES, then a cut
+            f, K = t.evaluate(wn, tangent)
+        if not tangent:
+            K = None
+        if len(ghosts):  # owned_only: the owner of their first node adds these
+            f = f.copy()
+            f[ghosts] = 0.0
+            if K is not None:
+                K = K.copy()
+                K[ghosts] = 0.0
+        f_rows = f[rows].copy()  # unmasked, for the reactions
+        if len(rows):
+            if K is not None:
+                # lifting, as dolfinx's apply_lifting does for the forms: the free rows get
+                # K_fb (g − w_b), so that the step that moves the prescribed dofs to their
+                # values moves the others with them (Newton stays quadratic). Without K,
+                # d = 0: the lift adds nothing
+                f[rows] += np.einsum("pij,pj->pi", K[rows], d)
+                K[rows] = np.where(mask[:, :, None] | mask[:, None, :], 0.0, K[rows])
+            f[rows] = np.where(mask, 0.0, f[rows])
+        return EvaluatedTerms(idx, f, K, rows, f_rows, tangent)
 
     def forget(self) -> None:
         """Drop the last evaluation (the terms' state changed without the unknowns changing)."""

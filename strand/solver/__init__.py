@@ -18,7 +18,7 @@ it. It
 
 Modules: ``terms`` (the pair terms and their assembly), ``convergence`` (Newton's settings and
 tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and its records),
-``interrupt`` (Ctrl-C).
+``interrupt`` (Ctrl-C), ``ordering`` (the MUMPS ordering that fills least).
 """
 
 from .convergence import NewtonConvergence, NewtonOptions, NewtonResult

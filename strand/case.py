@@ -79,6 +79,10 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               #   0: one lay length of the outer layer
     stuck_slip = 1e-9         # m, pairs that slide less than this stayed stuck throughout
     breaking_strength = 0.0   # N, minimum breaking strength for API RP 2SK's T–N; 0: not given
+    spectrum = []             # [[amplitude, cycles], ...]: the cycles in a period (a year, the
+                              #   design life) at each amplitude of lateral (N), curvature (1/m)
+                              #   or tension_swing (N); runs the amplitudes as the sweep and
+                              #   writes Miner's sum per wire and pair: spectrum.csv, spectrum.txt
 
 Unknown keys and bad values are errors naming the file and the key, raised before any computing.
 """
@@ -202,6 +206,13 @@ def _value(section: str, key: str, value, default, signed: bool = False):
                 "model (its wires buckle and its contact pairs open)"
             )
         return number
+    if (section, key) == ("fatigue", "spectrum"):
+        from .fatigue.spectrum import spectrum_classes
+
+        try:
+            return spectrum_classes(value)
+        except ValueError as e:
+            raise CaseError(f"[fatigue] spectrum: {e}") from None
     if isinstance(default, tuple):
         return _numbers(where, key, value)
     if isinstance(default, str):
@@ -273,10 +284,10 @@ def _cable(spec, base: Path | None, source: str) -> Cable:
         raise CaseError(f"{source}: cable: {e}") from None
 
 
-def _in(source: str, check: Callable, *args) -> None:
+def _in(source: str, check: Callable, *args):
     """Run ``check(*args)``, its ``CaseError`` prefixed with the case's ``source``."""
     try:
-        check(*args)
+        return check(*args)
     except CaseError as e:
         raise CaseError(f"{source}: {e}") from None
 
@@ -331,6 +342,28 @@ def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
         )
 
 
+def _spectrum_sweep(case: Case) -> Case:
+    """``case`` with the amplitudes of ``[fatigue] spectrum`` as its ``[load] sweep``: a
+    spectrum runs as a sweep; refused where the sweep lists other amplitudes, or without the
+    fatigue outputs, which give each amplitude's damage."""
+    spectrum, sweep = case.fatigue.spectrum, case.load.sweep
+    if not spectrum:
+        return case
+    amplitudes = tuple(a for a, _ in spectrum)
+    if not case.fatigue.outputs:
+        raise CaseError("[fatigue] spectrum needs [fatigue] outputs = true (each amplitude's "
+                        "damage comes from its fatigue report)")  # fmt: skip
+    if not any(case.load.cycle):
+        raise CaseError(f"[fatigue] spectrum needs a cycle with a target other than 0 (cycle = "
+                        f"{list(case.load.cycle)} stays at zero load)")  # fmt: skip
+    if sweep and sorted(sweep) != sorted(amplitudes):
+        raise CaseError(
+            f"[fatigue] spectrum amplitudes {list(amplitudes)} differ from [load] sweep = "
+            f"{list(sweep)}; give the spectrum alone: it runs its amplitudes as the sweep"
+        )
+    return case if sweep else replace(case, load=case.load.with_values(sweep=amplitudes))
+
+
 def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
     """The case of ``data`` (a case file's tables; relative cable files from ``base``), every
     setting checked (``CaseError`` naming ``source`` and the setting)."""
@@ -340,7 +373,7 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
         raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: {allowed}")
     cable = _cable(data.get("cable", "cardinal"), base, source)
     sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
-    case = Case(cable, **sections, source=source)
+    case = _in(source, _spectrum_sweep, Case(cable, **sections, source=source))
     _in(source, _check_steps_and_load, case)
     _in(source, _check_fatigue, case.fatigue, cable)
     return replace(case, unset_loads=_unset_loads(data, case))

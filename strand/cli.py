@@ -1,5 +1,5 @@
-"""strand's command line: ``strand run``, ``strand mesh`` and ``strand compare`` (see ``USAGE``,
-printed by ``strand --help``)."""
+"""strand's command line: ``strand run``, ``strand mesh``, ``strand compare`` and ``strand
+spectrum`` (see ``USAGE``, printed by ``strand --help``)."""
 
 from __future__ import annotations
 
@@ -21,6 +21,9 @@ strand mesh [case.toml]   build the strand mesh and contact pairs, print the tab
 strand compare case.toml | cardinal
                           run the case with small- and large-sliding contact; compare forces,
                           deflections and cost
+strand spectrum history.csv --column lateral_N [--bins 3]
+                          count the cycles of a load history by rainflow and print the
+                          [fatigue] spectrum to paste into a case file
 
 --set section.key=value changes one setting of the case (repeatable), e.g. --set mesh.length=0.5.
 Exit codes: 0 done, 2 bad input (one line on stderr, nothing computed), 3 a load step failed,
@@ -148,6 +151,27 @@ def _compare(args, parser) -> int:
     return 0
 
 
+def _spectrum(args) -> int:
+    from .load_history import HistoryError, history_spectrum, spectrum_block
+
+    if args.bins < 1:
+        raise HistoryError(f"--bins {args.bins}: expected a positive whole number of classes")
+    h = history_spectrum(args.history, args.column, args.bins, args.time_column,
+                         args.tension_column, args.scale)  # fmt: skip
+    text = spectrum_block(h, args.history)
+    if args.output:
+        from pathlib import Path
+
+        try:
+            Path(args.output).write_text(text)
+        except OSError as e:
+            raise HistoryError(
+                f"--output {args.output}: cannot be written ({e.strerror})"
+            ) from None
+    print(text, end="")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="strand", description=USAGE, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -203,6 +227,31 @@ def main(argv: list[str] | None = None) -> int:
     compare.add_argument(
         "--overwrite", action="store_true", help="replace the results of an earlier comparison"
     )
+    spectrum = sub.add_parser(
+        "spectrum",
+        help="reduce a load history (CSV) by rainflow to a [fatigue] spectrum",
+        description="Count the cycles of one column of a load history (a CSV in time, as a "
+        "global analysis writes it) by rainflow (ASTM E1049), sort their amplitudes (range/2) "
+        "into classes of equal width from 0, each run at its upper edge, and print the "
+        "[fatigue] spectrum = [[amplitude, cycles], ...] to paste into a case file.",
+    )
+    spectrum.add_argument("history", help="the history file: a header line of column names")
+    spectrum.add_argument(
+        "--column", required=True,
+        help="the column to count, in the unit of the case's parameter (lateral N, curvature "
+        "1/m, tension_swing N)",
+    )  # fmt: skip
+    spectrum.add_argument("--bins", type=int, default=3, help="classes (default: %(default)s)")
+    spectrum.add_argument("--time-column", default="", help="the time column: the duration")
+    spectrum.add_argument(
+        "--tension-column", default="",
+        help="a tension column (N): its mean, for [load] tension, and a line if it varies more",
+    )  # fmt: skip
+    spectrum.add_argument(
+        "--scale", type=float, default=1.0,
+        help="multiply the counts: the times the history recurs in the spectrum's period",
+    )  # fmt: skip
+    spectrum.add_argument("--output", help="also write the lines to this file")
     for p in (run, mesh, compare):
         p.add_argument(
             "--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
@@ -214,14 +263,17 @@ def main(argv: list[str] | None = None) -> int:
     from .case import CaseError
     from .checkpoint import CheckpointError
     from .folder import FolderError
+    from .load_history import HistoryError
 
     try:
+        if args.command == "spectrum":
+            return _spectrum(args)
         if args.command == "mesh":
             return _mesh(args)
         if args.command == "compare":
             return _compare(args, compare)
         return _run(args, run)
-    except (CableError, CaseError, FolderError, CheckpointError) as e:
+    except (CableError, CaseError, FolderError, CheckpointError, HistoryError) as e:
         from .parallel import is_root
 
         if is_root():  # one line, not one per rank

@@ -334,9 +334,10 @@ def fatigue_report(
     crossings = crossing_results(pairs, sections, cable, curves, cycles, settings.stuck_slip)
     crossings["clamp"] = in_clamp_zone(pairs.static["z"], length, end_zone)
     crossings["line"] = pairs.static["line"].astype(bool)
+    crossings |= {k: np.asarray(pairs.static[k]) for k in ("interface", "wire_a", "wire_b", "z")}
     elements = element_results(sections, settings.surface_points, curves)
     elements["clamp"] = in_clamp_zone(sections.static["z"], length, end_zone)
-    elements["layer"] = np.asarray(sections.static["layer"])
+    elements |= {k: np.asarray(sections.static[k]) for k in ("layer", "wire", "z")}
     wires = wire_results(sections, elements, elements["clamp"], curves)
     tn = tension_check(sections, cable, length, settings.breaking_strength, wires)
     ps = (

@@ -120,6 +120,7 @@ class FatigueSettings:
     end_zone: float = 0.0  # m, clamp zone at each end; 0: one lay length of the outer layer
     stuck_slip: float = 1e-9  # m, a pair whose Coulomb slide stays below this stuck throughout
     breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
+    spectrum: tuple[tuple[float, float], ...] = ()  # [[amplitude, cycles], ...]: run as the sweep
 
     def curve(self):
         """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""

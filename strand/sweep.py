@@ -4,7 +4,8 @@ set-up kind's measure (``SetupKind.measure``) at the peak and back at zero load,
 fatigue outputs, what answers the fatigue question per amplitude (``fatigue_columns``): the
 largest surface stress range per layer in the free span and the clamp zone, the worst crossing's
 (and line contact's) Ruiz F₂ and slip amplitude per zone, the largest Miner damage per zone and Poffenberger–Swart's
-ratio (NaN where skipped)."""
+ratio (NaN where skipped). A case with a ``[fatigue] spectrum`` runs its amplitudes as the sweep
+and gets Miner's sum over them (``strand.spectrum_report``)."""
 
 from __future__ import annotations
 
@@ -79,6 +80,11 @@ def run_sweep(
             table.text + f"sweep wall time {time.perf_counter() - t0:.0f} s\n"
         )
     print(table.text, file=stream, flush=True)
+    if case.fatigue.spectrum and is_root():
+        from .spectrum_report import write_spectrum
+
+        text = write_spectrum(top, case, results, parameter, problem.setup.units[parameter])
+        print(text, file=stream, end="", flush=True)
     return [tensioned, *results]
 
 

@@ -4,7 +4,8 @@ Physics only (numpy): ``stress`` (surface stresses of round wires from their sec
 ``fretting`` (per-cycle slip, forces, energy and Ruiz's parameters of contact pairs), ``cycles``
 (rainflow counting), ``sn`` (wire S–N curves: CIGRE's Safe Border Lines for aluminium, EN 1992-1-1's
 for steel wire; Miner's rule), ``tn`` (the strand-level T–N curves of DNV-OS-E301 and API RP 2SK),
-``zones`` (free span and clamp zones), ``poffenberger`` (where Poffenberger–Swart holds). The run's
+``zones`` (free span and clamp zones), ``poffenberger`` (where Poffenberger–Swart holds),
+``spectrum`` (load spectra: a history reduced by rainflow, their Miner sum). The run's
 per-step histories come from ``strand.history``; ``strand.fatigue_report`` puts them together.
 """
 
@@ -12,6 +13,7 @@ from .cycles import Cycles, rainflow_cycles
 from .fretting import CrossingCycles, crossing_cycles, ruiz_parameters, stuck_throughout
 from .poffenberger import SpanCheck, span_check, span_error
 from .sn import SN_CURVES, SNCurve, miner_damage, wire_material
+from .spectrum import Spectrum, reduce_history, spectrum_classes, spectrum_damage
 from .stress import section_components, section_frames, shear_stress, surface_stress
 from .tn import api_spiral_strand_life, dnv_spiral_rope_life, tension_damage
 from .zones import ZONES, in_clamp_zone
@@ -30,6 +32,10 @@ __all__ = [
     "SNCurve",
     "miner_damage",
     "wire_material",
+    "Spectrum",
+    "reduce_history",
+    "spectrum_classes",
+    "spectrum_damage",
     "api_spiral_strand_life",
     "dnv_spiral_rope_life",
     "tension_damage",

@@ -3,7 +3,7 @@
 Every setting has a default; a case file only lists what it changes. The default case is the seed
 paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0 → +4.3 → 0 → −4.3 → 0 kN::
 
-    cable = "cardinal"        # built-in name, a cable TOML (relative to the case), or a [cable] table
+    cable = "cardinal"        # built-in (cardinal, judge120), a cable TOML (relative to the case), or a [cable] table
 
     [mesh]
     length = 1.0              # m, free length between the end sections
@@ -96,7 +96,7 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from .cable import Cable, CableError, cable_from_dict, cardinal, load_cable
+from .cable import Cable, CableError, cable_from_dict, cardinal, judge120, load_cable
 from .contact_settings import ContactSettings
 from .settings import (
     KIND_SECTIONS,
@@ -116,7 +116,7 @@ __all__ = [
     "parse_settings",
 ]
 
-BUILTIN_CABLES = {"cardinal": cardinal}
+BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
 
 
 class CaseError(ValueError):
@@ -382,11 +382,11 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
 def _unset_loads(data: dict, case: Case) -> tuple[str, ...]:
     """The loads a run of ``case`` needs (the tension, and the cycle's amplitude unless the
     cycle stays at zero or a sweep gives the amplitudes) that ``data`` leaves out, for a cable
-    other than the built-in ones, whose defaults they are."""
+    other than Cardinal, whose defaults they are."""
     from . import kinds
 
     spec = data.get("cable", "cardinal")
-    if isinstance(spec, str) and spec.lower() in BUILTIN_CABLES:
+    if isinstance(spec, str) and spec.lower() == "cardinal":
         return ()
     needed = ["tension"]
     if any(case.load.cycle) and not case.load.sweep:

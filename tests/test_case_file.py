@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from strand import __version__
+from strand.cable import judge120
 from strand.case import case_from_dict, load_case
 from strand.case_toml import case_toml
 from strand.cli import main
@@ -102,7 +103,7 @@ def test_an_unknown_cable_name_lists_the_built_in_ones(tmp_path, capsys):
     assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
     line = one_line_error(capsys)
     assert "cable = 'drake' is neither a built-in cable nor a file" in line
-    assert line.endswith("built-in cables: cardinal")
+    assert line.endswith("built-in cables: cardinal, judge120")
     assert not (tmp_path / "out").exists()
 
 
@@ -144,3 +145,12 @@ def test_strand_run_without_a_case_prints_how_to_run_one(tmp_path, capsys, monke
     line = one_line_error(capsys)
     assert line.startswith("strand: error: built-in default with --set:") and "h_max" in line
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_built_in_name_needs_its_own_loads():
+    """``cable = "judge120"`` loads the built-in strand; Cardinal's default loads are not its
+    own, so a case that leaves them out is told to give them (Cardinal keeps its defaults)."""
+    case = case_from_dict({"cable": "judge120"})
+    assert case.cable == judge120()
+    assert case.unset_loads == ("tension", "lateral")
+    assert case_from_dict({"cable": "cardinal"}).unset_loads == ()

@@ -127,8 +127,9 @@ def run_programme(
     for index, stage in enumerate(programme.stages):
         if index < first:
             continue
+        solver = setup.driver(problem.solver, stage.parameter)  # a stand-in for a controlled load
         stepper = LoadStepper(
-            problem.solver, stage.first_step, stage.min_step, max_step=stage.max_step,
+            solver, stage.first_step, stage.min_step, max_step=stage.max_step,
             growth=stage.growth, extrapolate=stage.extrapolate,
         )  # fmt: skip
         if on_step is not None:

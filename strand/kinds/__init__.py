@@ -7,8 +7,10 @@ test set-up it builds (a ``strand.setups`` class, the library's mechanics), its 
 the measure a sweep reports, its analytical reference, its summary lines and figures. The
 registry maps ``[load] kind`` names to kinds: ``register`` adds one (the built-in ones at the end
 of this module), ``lookup`` finds one by name (a ``CaseError`` naming the known kinds otherwise)
-and ``kind_of`` gives a case's. The built-in kinds: ``saddle`` (the seed paper's midspan saddle
-test, ``strand.kinds.saddle``), ``bending`` (uniform bending by end rotations,
+and ``kind_of`` gives a case's, as the case's settings run it (``SetupKind.for_case``: a variant
+with another load parameter, such as the saddle test under displacement control). The built-in
+kinds: ``saddle`` (the seed paper's midspan saddle test, under force or displacement control,
+``strand.kinds.saddle``), ``bending`` (uniform bending by end rotations,
 ``strand.kinds.bending``) and ``tension_cycle`` (the end force cycled about the mean tension,
 ``strand.kinds.tension_cycle``); tests/test_setup_kinds.py registers one of its own.
 """
@@ -93,6 +95,11 @@ class SetupKind(ABC):
     def check_case(self, case: Case) -> None:
         """Check a case of this kind against its mesh and common settings (``CaseError``)."""
         return None
+
+    def for_case(self, case: Case) -> SetupKind:
+        """The kind as it runs ``case``: itself, or a variant its settings choose, with another
+        load parameter (the saddle test under displacement control)."""
+        return self
 
     @abstractmethod
     def setup(self, case: Case) -> Callable:
@@ -179,8 +186,8 @@ def lookup(name: str) -> SetupKind:
 
 
 def kind_of(case: Case) -> SetupKind:
-    """The kind of ``case`` (its ``[load] kind``)."""
-    return lookup(case.load.kind)
+    """The kind of ``case`` (its ``[load] kind``), as its settings run it (``for_case``)."""
+    return lookup(case.load.kind).for_case(case)
 
 
 # the built-in kinds (their modules import ``SetupKind`` from here)

@@ -93,6 +93,12 @@ class TestSetup(ABC):
         L = self.model.geometry.length
         return (0.25 * L, 0.75 * L)
 
+    def driver(self, solver, parameter: str):
+        """What a load programme's stage of ``parameter`` steps: ``solver`` itself, or a
+        stand-in whose solves also find a load the set-up controls (``SaddleTest`` under
+        displacement control)."""
+        return solver
+
     def check_parameter(self, name: str) -> None:
         if name not in self.parameters:
             raise KeyError(f"{type(self).__name__} has no load parameter {name!r}; "

@@ -6,7 +6,10 @@ rotation; the tension is a force on that section (a pilot node, the core's end, 
 wire ends by stiff penalty links on u_z); the lateral load P is a saddle at midspan: inward radial
 forces on the outer-layer nodes of the pressed face, weighted so that they sum to exactly P along
 the load direction. It measures the midspan deflection, the end's axial displacement, and the
-moment and curvature of the midspan section. Units: m, N, N m.
+moment and curvature of the midspan section. Under displacement control (``control``, a
+``ControlledDisplacement``) its cycle parameter prescribes the core's lateral displacement at a
+height (midspan, or Y_b's point near the clamp) and every step finds the saddle load that gives
+it (``strand.setups.displacement_control``). Units: m, N, N m.
 """
 
 from __future__ import annotations
@@ -18,10 +21,19 @@ import numpy.typing as npt
 from dolfinx import fem
 
 from ..model import StrandModel
-from ..post import section_resultants
+from ..post import bending_stiffness_bounds, section_resultants
 from .base import TestSetup, owned_load, pilot_links, quantity
+from .displacement_control import DisplacementControl
 
-__all__ = ["SaddleTest", "SaddleState", "MidspanBending", "saddle_weights"]
+__all__ = [
+    "SaddleTest",
+    "SaddleState",
+    "SaddleControlState",
+    "MidspanBending",
+    "ControlledDisplacement",
+    "saddle_weights",
+    "beam_compliance",
+]
 
 Array = npt.NDArray[np.float64]
 
@@ -69,6 +81,56 @@ class SaddleState:
 
 
 @dataclass(frozen=True)
+class SaddleControlState:
+    """Loads and displacements of the saddle test under displacement control at one state."""
+
+    tension: float = quantity("N", "end force")
+    lateral: float = quantity("N", "saddle load P that the control found")
+    deflection: float = quantity("m", "core's lateral displacement at midspan")
+    end_displacement: float = quantity("m", "axial displacement of the end section")
+    measured: float = quantity("m", "core's lateral displacement at the controlled point")
+    prescribed: float = quantity("m", "the displacement prescribed there")
+    solves: int = quantity("", "solves the step took to find P (secant)")
+
+    def progress(self) -> str:
+        """The measure a progress line shows: the load found."""
+        return f"P = {self.lateral / 1e3:+7.3f} kN, {self.solves} solves"
+
+
+@dataclass(frozen=True)
+class ControlledDisplacement:
+    """What the saddle load imposes under displacement control (``SaddleTest(control=...)``).
+
+    Attributes:
+        parameter: the cycle's load parameter that prescribes it ("deflection", "yb").
+        height: z of the core's point whose displacement along the load direction is prescribed
+            (m; linear between the core's nodes); None: midspan, the core's node that the
+            deflection is read at.
+        per_unit: the prescribed displacement (m) per unit of the parameter: 1, or ½ when the
+            parameter is a peak-to-peak amplitude (Y_b).
+        tolerance: the largest distance between measured and prescribed displacements, m.
+    """
+
+    parameter: str
+    height: float | None = None
+    per_unit: float = 1.0
+    tolerance: float = 1e-7
+
+
+def beam_compliance(ei: float, tension: float, length: float, z: float) -> float:
+    """Displacement (m) at ``z`` ≤ L/2 per newton of midspan load of the clamped–clamped beam
+    of bending stiffness ``ei`` (N m²) under ``tension`` (N):
+    w(z)/P = [z − sinh(pz)/p + tanh(pa/2)(cosh(pz) − 1)/p] / 2T, p = √(T/EI), a = L/2 (at
+    z = a: docs/theory.md's midspan deflection); z²(3L − 4z)/48EI without tension."""
+    a = length / 2
+    p = np.sqrt(tension / ei)
+    if p * a < 1e-3:
+        return z**2 * (3 * length - 4 * z) / (48 * ei)
+    return float((z - (np.sinh(p * z) - np.tanh(p * a / 2) * (np.cosh(p * z) - 1)) / p)
+                 / (2 * tension))  # fmt: skip
+
+
+@dataclass(frozen=True)
 class MidspanBending:
     """Moment and curvature of the midspan section (under the saddle: indicative only)."""
 
@@ -86,6 +148,8 @@ class SaddleTest(TestSetup):
         saddle_length: axial length of the saddle centred at midspan, m.
         direction: direction of a positive lateral load (across the strand axis).
         link_stiffness: penalty of the rigid-end links, N/m.
+        control: under displacement control, the displacement the cycle parameter prescribes
+            (the saddle load is then found at every step); None: the load is prescribed.
     """
 
     parameters = ("tension", "lateral")
@@ -100,6 +164,7 @@ class SaddleTest(TestSetup):
         saddle_length: float = 0.02,
         direction=(1.0, 0.0, 0.0),
         link_stiffness: float = 1e11,
+        control: ControlledDisplacement | None = None,
     ):
         self.model = model
         geometry, V = model.geometry, model.V
@@ -130,12 +195,36 @@ class SaddleTest(TestSetup):
         self.terms = [self.links, self.tension_load, *self.saddles]
         core = model.core_points()
         self._mid_core = core[np.argmin(np.abs(geometry.points[core, 2] - L / 2))]
+        self.control = control
+        self._driver: DisplacementControl | None = None
+        if control is not None:
+            name = control.parameter
+            self.parameters = (*self.parameters, name)
+            self.units = {**self.units, name: "m"}
+            self.cycle_parameter, self.state_type = name, SaddleControlState
+            self._prescribed = 0.0  # the parameter's value
+            self._measuring = self._core_point(control.height)
+
+    def _core_point(self, height: float | None) -> tuple[npt.NDArray[np.intp], Array]:
+        """The core's nodes and weights that interpolate its displacement at ``height`` (m;
+        None: the midspan node)."""
+        if height is None:
+            return np.array([self._mid_core]), np.ones(1)
+        core = self.model.core_points()
+        z = self.model.geometry.points[core, 2]
+        order = np.argsort(z)
+        core, z = core[order], z[order]
+        j = int(np.clip(np.searchsorted(z, height), 1, len(core) - 1))
+        t = (height - z[j - 1]) / (z[j] - z[j - 1])
+        return core[j - 1 : j + 1], np.array([1 - t, t])
 
     # -- loads -------------------------------------------------------------------------------------
     def set(self, name: str, value: float) -> None:
         self.check_parameter(name)
         if name == "tension":
             self.tension_load.factor = value
+        elif self.control is not None and name == self.control.parameter:
+            self._prescribed = value
         else:
             self.saddles[0].factor = max(value, 0.0)
             self.saddles[1].factor = min(value, 0.0)
@@ -144,7 +233,28 @@ class SaddleTest(TestSetup):
         self.check_parameter(name)
         if name == "tension":
             return self.tension_load.factor
+        if self.control is not None and name == self.control.parameter:
+            return self._prescribed
         return self.saddles[0].factor + self.saddles[1].factor
+
+    def driver(self, solver, parameter: str):
+        """Under displacement control, for a stage of the controlled parameter: the
+        ``DisplacementControl`` of the saddle load on ``solver``, started from the current
+        state (a new one from the unloaded saddle, so that a sweep's members are separate
+        runs); ``solver`` itself otherwise."""
+        control = self.control
+        if control is None or parameter != control.parameter:
+            return solver
+        unloaded = self.lateral == 0.0 and self._prescribed == 0.0
+        if self._driver is None or self._driver.solver is not solver or unloaded:
+            self._driver = DisplacementControl(
+                solver, lambda: self.lateral, self.set_lateral, self.measured_displacement,
+                lambda: self._prescribed * control.per_unit, self.reference_stiffness,
+                control.tolerance,
+            )  # fmt: skip
+        else:
+            self._driver.start()
+        return self._driver
 
     def set_tension(self, T: float) -> None:
         """Axial force on the end section, N."""
@@ -171,10 +281,29 @@ class SaddleTest(TestSetup):
         """Lateral displacement of the core at midspan along ``direction``, m."""
         return float(self.model.node_values()[self._mid_core, :3] @ self.direction)
 
-    def state(self) -> SaddleState:
-        return SaddleState(
-            self.tension, self.lateral, self.midspan_deflection(), self.end_displacement()
-        )
+    def measured_displacement(self) -> float:
+        """Under displacement control: the core's displacement along ``direction`` at the
+        controlled height, m."""
+        nodes, weights = self._measuring
+        return float(weights @ (self.model.node_values()[nodes, :3] @ self.direction))
+
+    def reference_stiffness(self) -> float:
+        """Load per displacement at the controlled height (N/m) of the clamped–clamped beam
+        with every wire slipping (EI_min) under the current tension: the control's first
+        guess, on the soft side (a first load that falls short is gentle on Newton)."""
+        g = self.model.geometry
+        ei_min = bending_stiffness_bounds(g.cable)[0]
+        height = self.control.height
+        z = g.length / 2 if height is None else height
+        return 1.0 / beam_compliance(ei_min, self.tension, g.length, z)
+
+    def state(self) -> SaddleState | SaddleControlState:
+        loads = (self.tension, self.lateral, self.midspan_deflection(), self.end_displacement())
+        if self.control is None:
+            return SaddleState(*loads)
+        solves = self._driver.solves if self._driver is not None else 0
+        return SaddleControlState(*loads, self.measured_displacement(),
+                                  self._prescribed * self.control.per_unit, solves)  # fmt: skip
 
     def moment_curvature(self, cells, residual=None, fit_half_length=0.015) -> MidspanBending:
         """Bending moment (N m) of the cross-section at z = L/2 and curvature (1/m) of the core.

@@ -17,7 +17,7 @@ from .problem import StrandProblem
 from .programme import LoadProgramme
 from .recorders import RunStep
 from .run_result import Start
-from .solver import NewtonOptions
+from .solver import ErrorControl, NewtonOptions
 from .solver.convergence import STALL_AFTER
 
 __all__ = [
@@ -78,6 +78,14 @@ def newton_options(case: Case) -> NewtonOptions:
         atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
         stall_after=STALL_AFTER if s.stall else 0, linesearch=s.line_search,
     )  # fmt: skip
+
+
+def step_control(case: Case) -> dict:
+    """``run_programme``'s step control from ``[steps]``: the error controller (``control =
+    "error"``, aiming at ``error_tolerance``) or None, and ``retry``."""
+    s = case.steps
+    controller = ErrorControl(tol=s.error_tolerance) if s.control == "error" else None
+    return {"controller": controller, "retry": s.retry}
 
 
 def setup_and_programme(case: Case):

@@ -154,6 +154,8 @@ _SIGNED = {("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 _ZERO_IS_OFF = {("steps", "balance"), ("fatigue", "end_zone"), ("fatigue", "breaking_strength")}
 #: PETSc's line searches for Newton (``[steps] line_search``)
 LINE_SEARCHES = ("cp", "basic", "bt", "l2")
+#: ``[steps] control``: growth after easy solves, or the predictor-miss controller (``ErrorControl``)
+STEP_CONTROLS = ("growth", "error")
 
 
 def _boolean(where: str, value) -> bool:
@@ -299,6 +301,10 @@ def _check_steps_and_load(case: Case) -> None:
     if steps.line_search not in LINE_SEARCHES:
         raise CaseError(
             f"[steps] line_search = {steps.line_search!r}: expected one of {list(LINE_SEARCHES)}"
+        )
+    if steps.control not in STEP_CONTROLS:
+        raise CaseError(
+            f"[steps] control = {steps.control!r}: expected one of {list(STEP_CONTROLS)}"
         )
     for kind in kinds.registered():  # every kind's own settings, whichever the case's
         kind.check_settings(load.by_kind[kind.name], steps.by_kind[kind.name])

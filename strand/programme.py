@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .solver import LoadStepper, RampState, StepRecord
+from .solver import ErrorControl, LoadStepper, RampState, StepRecord
 
 __all__ = ["Stage", "LoadProgramme", "Position", "run_programme", "cycle_stages"]
 
@@ -116,10 +116,14 @@ def run_programme(
     programme: LoadProgramme,
     on_step: Callable[[Stage, StepRecord, Position], None] | None = None,
     start: Position | None = None,
+    controller: ErrorControl | None = None,
+    retry: bool = False,
 ) -> None:
     """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
     record, position)`` after every committed step. ``start``: continue from a position (the
-    problem already in the state reached there: ``strand.checkpoint``). Raises
+    problem already in the state reached there: ``strand.checkpoint``). ``controller`` and
+    ``retry``: ``LoadStepper``'s, for every stage (default: growth after easy solves, no
+    retry). Raises
     ``LoadStepFailure`` when a step cannot be cut small enough to converge (the last converged
     state stays in the problem)."""
     setup = problem.setup
@@ -130,7 +134,8 @@ def run_programme(
         solver = setup.driver(problem.solver, stage.parameter)  # a stand-in for a controlled load
         stepper = LoadStepper(
             solver, stage.first_step, stage.min_step, max_step=stage.max_step,
-            growth=stage.growth, extrapolate=stage.extrapolate,
+            growth=stage.growth, extrapolate=stage.extrapolate, controller=controller,
+            retry=retry,
         )  # fmt: skip
         if on_step is not None:
             stepper.on_step = lambda rec, stage=stage, index=index, stepper=stepper: on_step(

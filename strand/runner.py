@@ -14,6 +14,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from .build import step_control
 from .case import Case
 from .fatigue_recorders import PairHistory, WireSectionHistory
 from .kinds import kind_of
@@ -249,7 +250,10 @@ def _take_programme(
             recording.start_from(start)
         with Interrupt(stream) as interrupt:
             problem.solver.interrupt = interrupt
-            run_programme(problem, programme, recording.on_step, start.position if start else None)
+            run_programme(
+                problem, programme, recording.on_step, start.position if start else None,
+                **step_control(recording.case),
+            )  # fmt: skip
     except RunInterrupted as stop:
         result.failure, result.interrupted = str(stop), True
         print(f"strand: stopped: {stop}", file=stream, flush=True)

@@ -92,6 +92,9 @@ class StepSettings(WithKinds):
     line_search: str = "cp"  # NewtonOptions.linesearch (docs/theory.md §6)
     tolerance: float = 1e-2  # N
     balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
+    control: str = "growth"  # "growth" after easy solves, or "error": the predictor's miss
+    error_tolerance: float = 1e-6  # m, "error" control: the step's miss aimed at (ErrorControl)
+    retry: bool = False  # retry a failed step once with the other predictor before halving
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
 
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from strand.case import load_case
-from strand.run import build_problem
+from strand.run import build_problem, run_case
 from strand.solver import ErrorControl, LoadStepper, NewtonResult, RampState
 from strand_cases import SEVEN_WIRE
 
@@ -253,3 +253,35 @@ def test_the_controlled_seven_wire_run_is_as_close_to_halved_steps_as_the_rule(t
     print(f"steps: halved {n_half}, rule {n_rule}, controlled {n_controlled}; "
           f"max |Δu| against halved: rule {error_rule:.3e} m, controlled {error_controlled:.3e} m")  # fmt: skip
     assert error_controlled <= error_rule
+
+
+@pytest.mark.parametrize("control", ["growth", "error"])
+def test_a_case_file_chooses_the_step_control(tmp_path, control):
+    """``[steps] control`` reaches every ramp of a run: on leg 1 of the quick 1+6, every step
+    taken without a cut follows its rule from the step before: × 1.5 after a solve of at most
+    6 iterations (else × 1) under the growth rule; under the controller with a tolerance no step
+    misses (1 m), × 2 (``grow_max``), or × 1 right after a cut (``grow_after_cut``); both within
+    ``lateral_max`` (150 N) and what is left of the leg."""
+    case = load_case(
+        Path(__file__).parents[1] / "cases" / "quick_1x6.toml",
+        [f'steps.control="{control}"', "steps.error_tolerance=1.0", "load.cycle=[1.0]",
+         "output.fields=false", "output.plots=false", "output.checkpoint=false",
+         "fatigue.outputs=false"],
+    )  # fmt: skip
+    result = run_case(case, tmp_path / control, stream=io.StringIO())
+    assert not result.failure
+    leg = [s for s in result.steps if s.stage == "leg 1"]
+    loads = np.array([0.0] + [s.load for s in leg])
+    checked = 0
+    for k in range(1, len(leg)):
+        if leg[k].cuts:
+            continue
+        before = loads[k] - loads[k - 1]
+        if control == "growth":
+            factor = 1.5 if leg[k - 1].iterations <= 6 else 1.0
+        else:
+            factor = 1.0 if leg[k - 1].cuts else 2.0
+        expected = min(before * factor, 150.0, 300.0 - loads[k])
+        assert loads[k + 1] - loads[k] == pytest.approx(expected), (k, loads)
+        checked += 1
+    assert checked >= 2

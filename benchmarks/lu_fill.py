@@ -1,0 +1,104 @@
+"""What same-layer contact does to the LU: Cardinal's tangent pattern factorised by MUMPS.
+
+Run: .venv/bin/python benchmarks/lu_fill.py [length_m]   (default 1.0)
+
+For the strand of the default case (Cardinal, h_max 4 mm) the Jacobian's sparsity pattern (the
+beam forms' extended by the pair stencils, ``strand.solver.terms.create_extended_matrix``) with:
+no same-layer pairs; the same-layer pairs as built (node a against the segment b₀b₁ of the
+neighbour that faces it); and, as a variant not taken, node a against the neighbour's node
+nearest to the facing point. Each pattern is factorised with MUMPS's PORD, AMF and METIS
+orderings on diagonally dominant values (``strand.solver.ordering``: the count is the pattern's
+alone). Prints the matrix's entries, MUMPS's operations per LU (RINFOG(3)) and factor entries
+(INFOG(29)), and, per same-layer pair, how far its facing point lies from the nearest node of the
+neighbour (what the node-to-node variant would move it by).
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import sys
+import time
+from datetime import date
+
+import numpy as np
+from petsc4py import PETSc
+
+from strand.case import load_case
+from strand.geometry import build_geometry
+from strand.problem import StrandProblem
+from strand.same_layer import same_layer_pairs
+from strand.solver.ordering import ORDERINGS
+from strand.solver.terms import create_extended_matrix
+
+
+def factorise(A: PETSc.Mat, ordering: int) -> tuple[float, float, float]:
+    """MUMPS's operations and factor entries for ``A``'s pattern, and the seconds it took."""
+    B = A.duplicate(copy=False)
+    ia, ja, _ = A.getValuesCSR()
+    B.setValuesCSR(ia, ja, np.full(len(ja), -1e-3))
+    B.assemble()
+    B.shift(1.0)
+    ksp = PETSc.KSP().create(A.comm)
+    ksp.setOperators(B)
+    ksp.setType("preonly")
+    pc = ksp.getPC()
+    pc.setType("lu")
+    pc.setFactorSolverType("mumps")
+    pc.setFactorSetUpSolverType()
+    F = pc.getFactorMatrix()
+    F.setMumpsIcntl(7, ordering)
+    t0 = time.perf_counter()
+    ksp.setUp()
+    out = F.getMumpsRinfog(3), float(F.getMumpsInfog(29)), time.perf_counter() - t0
+    ksp.destroy()
+    B.destroy()
+    return out
+
+
+def main(length: float = 1.0) -> None:
+    case = load_case(None, [f"mesh.length={length}", 'contact.same_layer="packed"'])
+    geometry = build_geometry(case.cable, length, case.mesh.h_max)
+    problem = StrandProblem(geometry, case.contact)
+    J = problem.solver._J  # the compiled Jacobian form
+    crossings = [t.stencils for t in problem.model.contact]
+    segments = [np.asarray(t.stencils) for t in problem.model.same_layer]
+    nearest = []
+    for t, st in zip(problem.model.same_layer, segments, strict=True):
+        xi = t.c[:, 2]  # the facing point's weight on b₁
+        nearest.append(np.column_stack([st[:, 0], np.where(xi < 0.5, st[:, 1], st[:, 2])]))
+    print(
+        f"# LU fill of Cardinal's tangent pattern, L = {length:g} m, "
+        f"{6 * len(geometry.points)} unknowns ({date.today()}, benchmarks/lu_fill.py {length:g})\n"
+    )
+    print("| same-layer pairs | matrix entries | ordering | LU operations | factor entries | s |")
+    print("|---|---|---|---|---|---|")
+    variants = {
+        "off": crossings,
+        "node to segment (built)": crossings + segments,
+        "node to nearest node (not built)": crossings + nearest,
+    }
+    for name, stencils in variants.items():
+        A = create_extended_matrix(J, stencils)
+        entries = A.getInfo()["nz_used"]
+        for ordering in ("pord", "amf", "metis"):
+            flops, factor, seconds = factorise(A, ORDERINGS[ordering])
+            print(f"| {name} | {entries:.3g} | {ordering.upper()} | {flops:.3g} | {factor:.3g} "
+                  f"| {seconds:.1f} |", flush=True)  # fmt: skip
+        A.destroy()
+    pairs = same_layer_pairs(geometry, "packed")
+    h = np.linalg.norm(geometry.points[pairs.b1] - geometry.points[pairs.b0], axis=1)
+    offset = np.minimum(pairs.weight, 1 - pairs.weight) * h
+    print(
+        "\n| layer | same-layer pairs | element (mm) | facing point to nearest node: median, max (mm) |"
+    )
+    print("|---|---|---|---|")
+    for layer in np.unique(pairs.layer):
+        m = pairs.layer == layer
+        print(f"| {layer} | {m.sum()} | {h[m].mean() * 1e3:.2f} | "
+              f"{np.median(offset[m]) * 1e3:.2f}, {offset[m].max() * 1e3:.2f} |")  # fmt: skip
+    problem.solver.destroy()
+
+
+if __name__ == "__main__":
+    main(*(float(a) for a in sys.argv[1:2]))

@@ -2,19 +2,21 @@
 cycle counting, Miner damage and Poffenberger–Swart's reference, from the run's histories.
 
 ``fatigue_report`` reads ``contact_pairs.h5`` and ``wire_sections.h5`` (written as the run went,
-``strand.recorders``), counts the load cycles of the history (rainflow on the cycle load, the
-tensioned state first) and writes:
+``strand.recorders``), counts the cycles of one steady repetition of the run's cycle (each
+history, the tensioned state then the cycle's steps, closed on itself and counted by rainflow:
+``strand.fatigue.cycles.repeating_cycles``; the load's cycles bound the pairs' per-cycle windows)
+and writes (damages and energies per cycle, ranges over the history):
 
 * ``crossings.csv`` — per contact pair: interface, wires, z, its zone (free span or clamp zone,
   ``strand.fatigue.zones``), angle, whether it stayed stuck throughout (Coulomb slide below
   ``[fatigue] stuck_slip``), worst cycle's slip amplitude, friction force amplitude, peak and
   mean normal force, Hertz contact (semi-axes, peak pressure), largest tensile surface stress,
-  Ruiz's F₁ and F₂, dissipated energy over the history, Miner damage of the two wires' surfaces
+  Ruiz's F₁ and F₂, dissipated energy per cycle, Miner damage of the two wires' surfaces
   facing each other (NaN, "not assessed", where neither wire's material has an S–N curve);
 * ``wire_stresses.csv`` — per element: its zone, the surface point of largest stress range (its
   angle ψ from the strand's outward radius), that range, its mean, the torsional shear range;
 * ``wires.csv`` — per wire: its layer's S–N curve (or "not assessed"), largest stress range and
-  where, Miner damage of the history and the number of repetitions of the history to failure,
+  where, Miner damage per cycle and the number of repetitions of the cycle to failure,
   over the whole wire and in the free span and the clamp zone apart (NaN where not assessed);
 * ``fatigue.txt`` — per zone the five worst crossings, hot spots and first wires to fail; the
   strand-level T–N check of the mooring standards (``strand.fatigue.tn``) on the strand's tension
@@ -37,7 +39,7 @@ from .analytical import poffenberger_swart
 from .cable import Cable
 from .case import FatigueSettings
 from .contact.hertz import contact_ellipse, line_contact
-from .fatigue.cycles import Cycles, rainflow_cycles
+from .fatigue.cycles import Cycles, cycle_steps, repeating_cycles
 from .fatigue.fretting import crossing_cycles, ruiz_parameters, stuck_throughout
 from .fatigue.poffenberger import span_check
 from .fatigue.sn import SN_CURVES, SNCurve, miner_damage
@@ -113,7 +115,7 @@ def _write_csv(path: Path, columns: dict[str, npt.ArrayLike], formats: dict[str,
 
 def _load_cycles(history: History) -> Cycles:
     load = history.values.get("load")
-    cycles = rainflow_cycles(load) if load is not None else None
+    cycles = repeating_cycles(load) if load is not None else None
     if cycles is None or len(cycles) == 0:
         raise ReportError("the history holds no load cycle yet: nothing to count")
     return cycles
@@ -127,10 +129,11 @@ def _curve_key(curve: SNCurve | None) -> str:
 
 
 def _damage(series: Array, curve: SNCurve | None) -> float:
-    """Miner damage of a stress history (rainflow), NaN where no curve applies."""
+    """Miner damage of one repetition of a repeating stress history, NaN where no curve
+    applies."""
     if curve is None:
         return np.nan
-    c = rainflow_cycles(series)
+    c = repeating_cycles(series)
     return miner_damage(c.range, c.count, curve)
 
 
@@ -162,8 +165,8 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curves: li
     sigma_a = _stress_at(sections, cells_a, psi_a)  # (S, P)
     sigma_b = _stress_at(sections, cells_b, psi_b)
     sigma = np.maximum(sigma_a, sigma_b)
-    sigma_peak = np.array([sigma[i : j + 1].max(axis=0) for i, j in zip(cycles.start, cycles.end,
-                                                                         strict=True)])  # fmt: skip
+    sigma_peak = np.array([sigma[cycle_steps(i, j, len(sigma))].max(axis=0)
+                           for i, j in zip(cycles.start, cycles.end, strict=True)])  # fmt: skip
     f1, f2 = ruiz_parameters(cc.friction_amplitude, area, cc.slip_amplitude, sigma_peak)
     worst = np.argmax(f2 if np.any(f2 > 0) else cc.slip_amplitude, axis=0)  # (P,)
     pick = lambda x: np.take_along_axis(x, worst[None, :], axis=0)[0]  # noqa: E731
@@ -190,9 +193,9 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curves: li
 
 def element_results(sections: History, n_points: int, curves: list) -> dict[str, Array]:
     """Per element: the surface point of largest stress range over the history, its range,
-    mean and peak, the torsional shear range, and the Miner damage at the worst point of the
-    element (rainflow on every point's stress history, under its layer's curve in ``curves``;
-    NaN where the layer has none)."""
+    mean and peak, the torsional shear range, and the Miner damage per cycle at the worst point
+    of the element (every point's stress history repeating, under its layer's curve in
+    ``curves``; NaN where the layer has none)."""
     st = sections.static
     psi = _surface_angles(n_points)
     N, m1, m2 = (sections[k][..., None] for k in ("axial", "m1", "m2"))
@@ -226,7 +229,7 @@ def _worst_of(elements: dict[str, Array], z: Array, mine: Array) -> tuple:
 
 
 def _repetitions(damage: Array) -> Array:
-    """Repetitions of the history to failure 1/D: inf where D = 0, NaN where not assessed."""
+    """Repetitions of the cycle to failure 1/D: inf where D = 0, NaN where not assessed."""
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(damage > 0, 1 / damage, np.where(np.isnan(damage), np.nan, np.inf))
 
@@ -234,7 +237,7 @@ def _repetitions(damage: Array) -> Array:
 def wire_results(sections: History, elements: dict[str, Array], clamp: Array, curves: list):
     """Per wire: its layer and curve key; over the whole wire and in the free span and the
     clamp zone (``clamp``: the elements' mask) apart: the largest stress range, its element's z
-    and angle, the Miner damage of the history and the repetitions to failure."""
+    and angle, the Miner damage per cycle and the repetitions to failure."""
     st = sections.static
     n_wires = int(st["wire"].max()) + 1
     out: dict[str, Array] = {"layer": np.zeros(n_wires, int)}
@@ -268,12 +271,12 @@ def strand_tension(sections: History, cable: Cable, length: float) -> Array:
 
 def tension_check(sections: History, cable: Cable, length: float, breaking_strength: float,
                   wires: dict[str, Array]) -> dict:  # fmt: skip
-    """The mooring standards' strand-level check on the strand's tension history (rainflow):
-    DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage, beside the wire-level
-    model's largest damage on the same history; ``cycle`` False where the tension stays within
+    """The mooring standards' strand-level check on the strand's tension history, repeating:
+    DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage per cycle, beside the
+    wire-level model's largest; ``cycle`` False where the tension stays within
     ``TENSION_CYCLE_SHARE`` of its mean."""
     tension = strand_tension(sections, cable, length)
-    c = rainflow_cycles(tension)
+    c = repeating_cycles(tension)
     area = sum(lay.wires * lay.wire.area for lay in cable.layers)
     dnv, api = tension_damage(c.range, c.count, c.mean, area, breaking_strength)
     largest = float(c.range.max()) if len(c) else 0.0

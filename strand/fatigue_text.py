@@ -1,7 +1,8 @@
 """The fatigue report's summary, ``fatigue.txt`` (``strand.fatigue_report`` computes what it says):
-the load cycles, the pairs stuck throughout, the S–N curve of every layer (one line for those not
-assessed), per zone (free span, clamp zone) the five worst crossings, hot spots and first wires to
-fail, the strand-level T–N check beside the wire-level damage, and Poffenberger–Swart or why it is
+the load cycles of one steady repetition of the run's cycle (damages are per such cycle), the
+pairs stuck throughout, the S–N curve of every layer (one line for those not assessed), per zone
+(free span, clamp zone) the five worst crossings, hot spots and first wires to fail, the
+strand-level T–N check beside the wire-level damage, and Poffenberger–Swart or why it is
 skipped."""
 
 from __future__ import annotations
@@ -75,10 +76,10 @@ def _zone_text(zone: str, pairs, sections, r: FatigueReport, mask_p, mask_e, mas
         )
     damage = w["damage" + suffix]
     order = [k for k in np.argsort(-np.nan_to_num(damage, nan=-1.0)) if damage[k] > 0][:5]
-    lines.append(" first wires to fail (Miner damage per history):")
+    lines.append(" first wires to fail (Miner damage per cycle, a steady repetition):")
     for k in order:
         lines.append(
-            f"  wire {k:2d} (layer {int(w['layer'][k])}): damage {damage[k]:.3g} per history, "
+            f"  wire {k:2d} (layer {int(w['layer'][k])}): damage {damage[k]:.3g} per cycle, "
             f"{w['repetitions' + suffix][k]:.3g} repetitions; largest range "
             f"{1e-6 * w['range' + suffix][k]:.2f} MPa at z = {w['z' + suffix][k]:.4f} m, "
             f"ψ = {w['angle' + suffix][k]:.0f}°"
@@ -93,7 +94,7 @@ def _zone_text(zone: str, pairs, sections, r: FatigueReport, mask_p, mask_e, mas
 def _tension_lines(tn: dict) -> list[str]:
     """The strand-level T–N check beside the wire-level model, on the same history."""
     wire = ("no wire assessed" if tn["wire"] is None else
-            f"largest damage {tn['wire_damage']:.3g} per history (wire {tn['wire']})")  # fmt: skip
+            f"largest damage {tn['wire_damage']:.3g} per cycle (wire {tn['wire']})")  # fmt: skip
     if not tn["cycle"]:
         return [
             f"tension-only practice (T–N): no tension cycle: the strand's tension at midspan "
@@ -102,13 +103,14 @@ def _tension_lines(tn: dict) -> list[str]:
             f"model: {wire}"
         ]
     api = ("API RP 2SK spiral strand (N R^5.05 = 10^(3.25 − 3.43 L_m), R = ΔT/MBS): damage "
-           f"{tn['api']:.3g} per history" if tn["api"] is not None else
+           f"{tn['api']:.3g} per cycle" if tn["api"] is not None else
            "API RP 2SK: not checked ([fatigue] breaking_strength not given)")  # fmt: skip
     return [
         f"tension-only practice (T–N) on the strand's tension at midspan (mean "
-        f"{1e-3 * tn['mean']:.4g} kN, largest range {1e-3 * tn['range']:.4g} kN, rainflow):",
+        f"{1e-3 * tn['mean']:.4g} kN, largest range {1e-3 * tn['range']:.4g} kN, rainflow of the "
+        "history repeating):",
         f"  DNV-OS-E301 spiral rope (n = 1.7e17 s^-4.8, s = ΔT over the metallic area "
-        f"{1e6 * tn['area']:.1f} mm²): damage {tn['dnv']:.3g} per history",
+        f"{1e6 * tn['area']:.1f} mm²): damage {tn['dnv']:.3g} per cycle",
         f"  {api}",
         f"  wire-level model on the same history: {wire}",
     ]
@@ -120,7 +122,8 @@ def summary_text(pairs, sections, cable: Cable, curves: list, settings: FatigueS
     first wires to fail; the T–N check; P–S."""
     st, c, cycles = pairs.static, r.crossings, r.cycles
     lines = [
-        f"load cycles (rainflow on the cycle load, ASTM E1049): {len(cycles)} counted, ranges "
+        f"load cycles of one steady repetition of the cycle (rainflow on the cycle load closed "
+        f"on itself, ASTM E1049): {len(cycles)} counted, ranges "
         + ", ".join(f"{x:.4g}×{n:g}" for x, n in zip(cycles.range, cycles.count, strict=True)),
         f"stuck throughout (Coulomb slide below {1e9 * settings.stuck_slip:g} nm): "
         + ", ".join(

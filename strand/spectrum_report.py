@@ -1,11 +1,13 @@
 """The fatigue spectrum of a sweep (``[fatigue] spectrum``): Miner's sum over its members.
 
 A spectrum case runs its amplitudes as a sweep (``strand.sweep``). Each member's fatigue report
-(``strand.fatigue_report``) holds the damage dᵢ of one repetition of its history (the tensioned
-state, then the case's cycle once at amplitude i): per element (at its worst surface point), per
-contact pair (the two wires' facing surfaces) and, on the strand's tension, by the T–N curves of
-the mooring standards. The spectrum weights them with the counts nᵢ
-(``strand.fatigue.spectrum.spectrum_damage``); no physics is computed again:
+(``strand.fatigue_report``) holds the damage dᵢ of one steady repetition of the case's cycle at
+amplitude i (its history, the tensioned state then the cycle, closed on itself and counted as
+repeating: ``strand.fatigue.cycles.repeating_cycles``): per element (at its worst surface point),
+per contact pair (the two wires' facing surfaces) and, on the strand's tension, by the T–N curves
+of the mooring standards, so nᵢ steady cycles at amplitude i damage nᵢ dᵢ. The spectrum weights
+them with the counts nᵢ (``strand.fatigue.spectrum.spectrum_damage``); no physics is computed
+again:
 
 * per element D = Σᵢ nᵢ dᵢ, and per wire and zone (free span, clamp zone) the largest, at its
   element (the sum per element first, then the largest: the damage of one place);
@@ -215,12 +217,9 @@ def spectrum_text(r: SpectrumReport) -> str:
     the T–N sums beside the wire-level model's."""
     lines = [
         f"fatigue spectrum of {r.parameter}: Miner's D = Σ n_i d_i, n_i the cycles in the "
-        "spectrum's period, d_i the damage per history of the member at amplitude i (its "
-        "fatigue report: the tensioned state, then the cycle once); D is per that period, 1/D "
-        "periods to failure",
-        "  (d_i counts the history once from the tensioned state, ASTM's half cycles: its reversal "
-        "+A → −A counts ½, so n_i steady repetitions of a symmetric cycle damage up to about 2 D; "
-        "docs/fatigue.md, Spectra)",
+        "spectrum's period, d_i the damage per cycle of the member at amplitude i (its fatigue "
+        "report: one steady repetition of the cycle, its history closed on itself); D is per that "
+        "period, 1/D periods to failure",
         f"  amplitude ({r.unit})  cycles n_i  member",
         *(
             f"  {a:>13g}  {n:>10.4g}  {m}"

@@ -29,6 +29,7 @@ from strand.fatigue import (
     shear_stress,
     surface_stress,
 )
+from strand.fatigue.cycles import cycle_steps, repeating_cycles
 from strand.history import read_history
 from strand.mesh import beam_space, polyline_mesh
 from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
@@ -85,7 +86,8 @@ def test_a_sliding_crossing_slips_by_s_less_mu_p_over_k_and_dissipates_coulombs_
     """Shear 0 → +S → −S → +S: on the reversal +S → −S the pair slides by 2(S − μP/k) (the
     parallelogram's width), its surface points move by 2(S − μP·C_b) (beam b's compliance C_b
     takes the rest), the friction force swings by 2μP, and friction dissipates μP per metre
-    slid: over the whole path μP × 5(S − μP/k)."""
+    slid: over the whole path μP × 5(S − μP/k). Counted as a repeating history, the reversal is
+    one full cycle with the same amplitudes, and dissipates Coulomb's loop 4μP(S − μP/k)."""
     S = 30e-6
     shears, (force, traction, slip, sliding, work), k, beam_b = sheared_crossing([0.0, S, -S, S])
     cycles = rainflow_cycles(shears)
@@ -98,6 +100,13 @@ def test_a_sliding_crossing_slips_by_s_less_mu_p_over_k_and_dissipates_coulombs_
     assert cc.energy[reversal, 0] == pytest.approx(2 * MU * P * (S - MU * P / k), rel=3e-3)
     assert work[-1, 0] == pytest.approx(5 * MU * P * (S - MU * P / k), rel=3e-3)
     assert np.all(np.diff(work[:, 0]) >= -1e-18)  # dissipation never negative
+    steady = repeating_cycles(shears)
+    full = np.flatnonzero(np.isclose(steady.range, 2 * S))
+    assert len(full) == 1 and steady.count[full[0]] == 1.0
+    cs = crossing_cycles(steady, force, traction, slip, sliding, work)
+    for name in ("slip_amplitude", "displacement_amplitude", "friction_amplitude"):
+        assert getattr(cs, name)[full[0], 0] == getattr(cc, name)[reversal, 0], name
+    assert cs.energy[full[0], 0] == pytest.approx(4 * MU * P * (S - MU * P / k), rel=3e-3)
 
 
 def test_a_sticking_crossing_does_not_slide_and_dissipates_nothing():
@@ -196,6 +205,80 @@ def test_cigre_safe_border_line_and_miner_on_constant_amplitude():
     assert miner_damage([2 * amplitude] * 5, [1.0] * 5, sbl) == pytest.approx(5 / n_fail)
     c = rainflow_cycles([0.0, 4.0, 0.0, -4.0, 0.0])
     assert sorted(zip(c.range, c.count, strict=True)) == [(4.0, 0.5), (4.0, 0.5), (8.0, 0.5)]
+
+
+# -- cycles of a repeating history --------------------------------------------------------------
+def _counted(c) -> list[tuple[float, float, float]]:
+    """(range, mean, count) of every cycle, sorted, to 12 digits."""
+    rows = zip(np.round(c.range, 12), np.round(c.mean, 12) + 0.0, c.count, strict=True)
+    return sorted((float(r), float(m), float(n)) for r, m, n in rows)
+
+
+@pytest.mark.parametrize("periods", [1, 4])
+def test_a_repeating_sine_counts_its_periods_as_full_cycles(periods):
+    """A sin 2πt over N whole periods from t = 0, its peaks sampled: repeating, N cycles of 2A
+    about 0. Once through, ASTM counts 0 → A as ½ cycle of A, then each of the 2N − 1 ranges
+    between the peaks as ½ cycle of 2A (each contains the start of what is left), then −A → 0 as
+    ½ cycle of A: N − ½ cycles of 2A and two halves of A about ±A/2."""
+    A = 3.0
+    s = A * np.sin(2 * np.pi * np.arange(20 * periods + 1) / 20)
+    assert _counted(repeating_cycles(s)) == [(2 * A, 0.0, 1.0)] * periods
+    once = _counted(rainflow_cycles(s))
+    assert once == sorted([(A, -A / 2, 0.5), (A, A / 2, 0.5)] + [(2 * A, 0.0, 0.5)]
+                          * (2 * periods - 1))  # fmt: skip
+
+
+def test_repeating_cycles_of_the_saddle_cycle_and_of_two_blocks_by_hand():
+    """[0, 1, 0, −1, 0] (the cycle [1, 0, −1, 0] from the tensioned state): one cycle of 2 about
+    0, between its turning points 1 and 3. Two blocks, (2, −2) × 10 then (5, −5) × 3 (two sine
+    blocks from 0 to 0), repeated: rotated to start at 5, the three-point rule closes (5, −5)
+    twice, then each (2, −2) of the small block as the next 2 comes (9 of them) and the last
+    when the final 5 comes, and (5, −5) round the small block: 3 cycles of 10 and 10 of 4, all
+    about 0 (once through: 13.5 cycles, the block changes −2 → 5 and the ends as halves)."""
+    c = repeating_cycles([0.0, 1.0, 0.0, -1.0, 0.0])
+    assert _counted(c) == [(2.0, 0.0, 1.0)] and (c.start[0], c.end[0]) == (1, 3)
+    t = np.arange(20) / 20
+    blocks = np.concatenate([np.tile(2 * np.sin(2 * np.pi * t), 10),
+                             np.tile(5 * np.sin(2 * np.pi * t), 3), [0.0]])  # fmt: skip
+    assert _counted(repeating_cycles(blocks)) == [(4.0, 0.0, 1.0)] * 10 + [(10.0, 0.0, 1.0)] * 3
+    assert rainflow_cycles(blocks).count.sum() == 13.5
+
+
+def test_repeating_cycles_are_what_each_further_repetition_adds_once_through():
+    """On random histories, Σ count × range^k of the repeating count equals what the third
+    repetition adds to a once-through count of the history repeated twice (k = 1, 5, 9); a
+    constant history has no cycle."""
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        s = np.round(rng.normal(size=rng.integers(2, 25)), 2)
+        c = repeating_cycles(s)
+        twice, thrice = rainflow_cycles(np.tile(s, 2)), rainflow_cycles(np.tile(s, 3))
+        assert np.all(c.count == 1.0)
+        for k in (1, 5, 9):
+            added = np.sum(thrice.count * thrice.range**k) - np.sum(twice.count * twice.range**k)
+            assert np.sum(c.range**k) == pytest.approx(added, rel=1e-9, abs=1e-12)
+    assert len(repeating_cycles([2.0, 2.0, 2.0])) == 0
+
+
+def test_a_cycle_over_the_end_of_a_repeating_history_takes_its_window_across_it():
+    """[0, 1, −1, 0.5] repeated: (1, −1) from index 1 to 2, and (0.5, 0) from index 3 over the
+    end to index 0; that cycle's window is steps 3, 0, its work the work of step 3 to the end
+    plus that of the start to step 0 (none: the closure dissipates nothing), its peak force the
+    larger of the two steps'."""
+    c = repeating_cycles([0.0, 1.0, -1.0, 0.5])
+    assert _counted(c) == [(0.5, 0.25, 1.0), (2.0, 0.0, 1.0)]
+    wrap = int(np.flatnonzero(c.range == 0.5)[0])
+    assert (c.start[wrap], c.end[wrap]) == (3, 0) and list(cycle_steps(3, 0, 4)) == [3, 0]
+    assert list(cycle_steps(1, 2, 4)) == [1, 2]
+    force = np.array([[5.0], [6.0], [7.0], [8.0]])
+    work = np.array([[0.0], [1.0], [3.0], [6.0]])
+    slip = np.zeros((4, 1, 3))
+    slip[:, 0, 0] = [0.0, 2.0, -2.0, 1.0]
+    cc = crossing_cycles(c, force, slip, slip, slip, work)
+    assert cc.peak_force[wrap, 0] == 8.0 and cc.mean_force[wrap, 0] == 6.5
+    assert cc.energy[wrap, 0] == 0.0 and cc.slip_amplitude[wrap, 0] == 0.5
+    other = 1 - wrap
+    assert cc.energy[other, 0] == 2 * (3.0 - 1.0) and cc.peak_force[other, 0] == 7.0
 
 
 # -- Poffenberger–Swart -------------------------------------------------------------------------

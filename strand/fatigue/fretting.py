@@ -10,11 +10,17 @@ the change ‖x_j − x_i‖. Per pair and counted cycle:
 * slip amplitude δ = ‖sliding_j − sliding_i‖/2 (gross slip; zero in stick) and the amplitude of the
   relative displacement of the surface points (with the contact's elastic compliance);
 * friction force amplitude Q = ‖t_j − t_i‖/2, peak and mean normal force over the window;
-* dissipated energy: 2 × count × (work_j − work_i) (the half loop i → j, doubled for full cycles);
+* dissipated energy: 2 × count × the work done over the window (the half loop i → j, doubled for
+  full cycles);
 * Ruiz's fretting parameters (Ruiz, Boddington & Chen, Exp. Mech. 24, 1984): the wear parameter
   F₁ = τ δ (J/m²) and the fretting-fatigue parameter F₂ = σ_T τ δ (J Pa/m²), with τ = Q/area the
   mean friction traction over the Hertz contact area and σ_T the largest tensile surface stress of
   the two wires at the contact over the cycle.
+
+Cycles of a repeating history (``cycles.repeating_cycles``) may run over its end (i > j): their
+window is i…end, then start…j (``cycles.cycle_steps``), their work the work over both parts (the
+closure from the last step to the first dissipates nothing), and their changes x_j − x_i between
+the two states.
 
 Units: m, N, J, Pa.
 """
@@ -26,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from .cycles import Cycles
+from .cycles import Cycles, cycle_steps
 
 __all__ = ["CrossingCycles", "crossing_cycles", "ruiz_parameters", "stuck_throughout"]
 
@@ -50,20 +56,25 @@ def _half_change(x: Array, i: int, j: int) -> Array:
     return 0.5 * np.linalg.norm(x[j] - x[i], axis=-1)
 
 
+def _work(work: Array, i: int, j: int) -> Array:
+    """The work done from step i to j, over the end of the history where i > j."""
+    return work[j] - work[i] if i <= j else work[-1] - work[i] + work[j] - work[0]
+
+
 def crossing_cycles(
     cycles: Cycles, force: Array, traction: Array, slip: Array, sliding: Array, work: Array
 ) -> CrossingCycles:
     """Per-cycle results of pair histories over the steps: ``force`` (S, P), ``traction``,
     ``slip``, ``sliding`` (S, P, 3), ``work`` (S, P); ``cycles`` counted on the load at the same
-    steps."""
+    steps, once through or repeating."""
     rows = []
     for i, j, c in zip(cycles.start, cycles.end, cycles.count, strict=True):
-        window = force[i : j + 1]
+        window = force[cycle_steps(i, j, len(force))]
         rows.append(
             (
                 _half_change(sliding, i, j), _half_change(slip, i, j),
                 _half_change(traction, i, j), window.max(axis=0), window.mean(axis=0),
-                2 * c * (work[j] - work[i]),
+                2 * c * _work(work, i, j),
             )
         )  # fmt: skip
     n = force.shape[1]

@@ -151,7 +151,7 @@ def fatigue_columns(report, n_layers: int) -> dict[str, float]:
     span, clamp zone) the largest surface stress range (MPa); per zone the worst crossing by
     Ruiz's F₂ (MPa J/m²) and its slip amplitude (µm), and the same for the line contacts (their
     F₂ with the tributary length's contact area, ``worst_line_…``), the largest Miner
-    damage per history of a wire (NaN: none assessed); Poffenberger–Swart's ratio of the model's
+    damage per cycle of a wire (one steady repetition; NaN: none assessed); Poffenberger–Swart's ratio of the model's
     amplitude to its own (NaN where skipped or without a clamp). NaN where a zone has none."""
     if report is None:
         return {}

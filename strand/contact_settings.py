@@ -51,12 +51,13 @@ class ContactSettings:
             "off", "nominal" (each layer's gaps from its helices, clipped at touching),
             "packed" (neighbours touching, the spare circumference in one gap, as stranding
             leaves a layer whose nominal gaps are of the order of its wires' diameter
-            tolerance), or "auto" (default): "packed" in small sliding, "off" in large sliding
-            (same-layer pairs are built for small sliding only). Small sliding.
-        slip: the friction's slip measure between layers (``strand.contact.element``):
-            "surface" (the relative motion of the two surface points in contact: a wire rolls on
-            its neighbour without slip) or "centreline" (the seed paper's: the motion of the
-            centre lines' closest points, blind to a wire's spin: rolling is slip); small sliding.
+            tolerance), or "auto" (default): "packed". In large sliding each facing point is
+            re-found on the neighbour's centreline within the sliding reach.
+        slip: the friction's slip measure between layers (``strand.contact.element``, in large
+            sliding ``strand.contact.sliding_slip``): "surface" (the relative motion of the two
+            surface points in contact: a wire rolls on its neighbour without slip) or
+            "centreline" (the seed paper's: the motion of the centre lines' closest points,
+            blind to a wire's spin: rolling is slip). Same-layer pairs take "surface".
     """
 
     normal: str = "auto"
@@ -84,21 +85,11 @@ class ContactSettings:
         if self.model not in ("small", "large"):
             raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
         if self.same_layer == "auto":
-            object.__setattr__(self, "same_layer", "packed" if self.model == "small" else "off")
+            object.__setattr__(self, "same_layer", "packed")
         if self.same_layer not in SAME_LAYER:
             raise CableError(
                 f"contact same_layer {self.same_layer!r} is unknown; choose auto, "
                 f"{', '.join(SAME_LAYER)}"
-            )
-        if self.same_layer != "off" and self.model != "small":
-            raise CableError(
-                f'contact same_layer = "{self.same_layer}" needs model = "small" (same-layer '
-                "pairs are not built for large sliding yet)"
-            )
-        if self.slip != "surface" and self.model != "small":
-            raise CableError(
-                f'contact slip = "{self.slip}" needs model = "small" (large sliding measures the '
-                "surface points' slip)"
             )
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)

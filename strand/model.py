@@ -23,7 +23,14 @@ from .output import cell_function
 from .pair_results import PairResults
 from .partition import DistributionError, owned_rows
 from .same_layer import same_layer_groups, same_layer_pairs
-from .strand_contact import contact_groups, pair_stencils, sliding_groups, sliding_windows
+from .strand_contact import (
+    contact_groups,
+    pair_stencils,
+    same_layer_sliding_groups,
+    same_layer_windows,
+    sliding_groups,
+    sliding_windows,
+)
 
 __all__ = ["StrandModel", "layer_section", "strand_stencils"]
 
@@ -56,7 +63,11 @@ def strand_stencils(
     else:
         out = [pair_stencils(geometry)]
     if settings.same_layer != "off":
-        out.append(same_layer_pairs(geometry, settings.same_layer).stencils)
+        pairs = same_layer_pairs(geometry, settings.same_layer)
+        if settings.model == "large":
+            out += [w.nodes for w in same_layer_windows(geometry, pairs, settings.reach)]
+        else:
+            out.append(pairs.stencils)
     offsets = geometry.wire_offsets
     return out + [offsets[:-1][None, :], (offsets[1:] - 1)[None, :]]
 
@@ -97,10 +108,11 @@ class StrandModel:
         self.same_layer_pairs = (
             None if cs.same_layer == "off" else same_layer_pairs(geometry, cs.same_layer)
         )
+        builder = same_layer_sliding_groups if cs.model == "large" else same_layer_groups
         self.same_layer = (
             []
             if self.same_layer_pairs is None
-            else same_layer_groups(geometry, self.same_layer_pairs, self.i2b, cs, owned)
+            else builder(geometry, self.same_layer_pairs, self.i2b, cs, owned)
         )
         n_pairs = comm.allreduce(sum(len(g.index) for g in self.contact), op=MPI.SUM)
         if n_pairs != len(geometry.pairs):

@@ -5,8 +5,11 @@ are radially aligned, and every layer-1 node against the core. Here they become 
 (nodes as dof blocks, the geometry's radial normals, gaps zero by construction) and, with the laws
 that ``ContactSettings`` choose, the small-sliding ``ContactGroup`` of each kind, or the
 large-sliding ``SlidingGroup`` of each window size on the wires as node chains (``sliding_groups``;
-windows in ``strand.contact.windows``); ``centreline_gaps`` measures the pairs' clearance on
-deformed centrelines (diagnostics). Units: m, N.
+windows in ``strand.contact.windows``). In large sliding the same-layer pairs
+(``strand.same_layer``) are line pairs too: each node against its neighbour wire's centreline,
+the facing point re-found in a window around the segment it starts on
+(``same_layer_sliding_groups``). ``centreline_gaps`` measures the pairs' clearance on deformed
+centrelines (diagnostics). Units: m, N.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from .contact.windows import NodeChains, SlidingWindows, chain_windows, sliding_
 from .contact_settings import ContactSettings
 from .geometry import LINE, POINT, StrandGeometry
 from .partition import DistributionError, owned_rows
+from .same_layer import SameLayerPairs, same_layer_laws
 
 __all__ = [
     "strand_pairs",
@@ -33,6 +37,8 @@ __all__ = [
     "wire_chains",
     "sliding_windows",
     "sliding_groups",
+    "same_layer_windows",
+    "same_layer_sliding_groups",
     "centreline_gaps",
 ]
 
@@ -174,9 +180,65 @@ def sliding_groups(
         pairs = strand_pairs(geometry, points, windows.rows)  # on input nodes
         pair_tangents = np.stack([tangents[pairs.a], tangents[pairs.b]], axis=1)
         laws = pair_laws(geometry, windows.rows, settings, pair_tangents)
+        options = {"tangents": tangents, "blocks": input_to_block, "slip": settings.slip}
+        groups.append(sliding_group(pairs, windows, chains, *laws, **options))
+    return groups
+
+
+def _same_layer_line_pairs(geometry: StrandGeometry, pairs: SameLayerPairs, rows) -> NodePairs:
+    """The same-layer pairs ``rows`` as line pairs on input nodes: the first node b₀ of the
+    neighbour's facing segment (its wire the beam a of a line pair) against node a."""
+    curve, node = pairs.b0[rows], pairs.a[rows]
+    nodes = np.column_stack(
+        [curve, node, *wire_neighbours(geometry, curve), *wire_neighbours(geometry, node)]
+    )
+    radius = np.array([geometry.cable.layers[i].wire.diameter / 2 for i in pairs.layer[rows]])
+    return NodePairs(
+        nodes.astype(np.int32), geometry.points[nodes], True, radius, radius,
+        -pairs.normal[rows], pairs.gap[rows], pairs.tributary[rows], np.asarray(rows),
+    )  # fmt: skip
+
+
+def same_layer_windows(
+    geometry: StrandGeometry, pairs: SameLayerPairs, reach: float, chains: NodeChains | None = None
+) -> list[SlidingWindows]:
+    """The windows of the same-layer pairs in large sliding, per window size: ``rows`` of
+    ``pairs``, ``nodes`` (P, na + 1) the neighbour wire's window (``reach`` either side of the
+    facing segment) then node a."""
+    chains = wire_chains(geometry) if chains is None else chains
+    line_pairs = _same_layer_line_pairs(geometry, pairs, np.arange(len(pairs)))
+    return chain_windows(line_pairs, chains, reach, on_segment=True)
+
+
+def same_layer_sliding_groups(
+    geometry: StrandGeometry,
+    pairs: SameLayerPairs,
+    input_to_block: npt.NDArray[np.int32],
+    settings: ContactSettings,
+    n_owned: int | None = None,
+) -> list[SlidingGroup]:
+    """``pairs`` (``same_layer.same_layer_pairs``) in large sliding: line pairs of node a
+    against the neighbour's centreline from its facing point, one ``SlidingGroup`` per window
+    size, with the initial gaps of ``pairs``, the laws of ``same_layer.same_layer_laws`` and the
+    surface points' slip (as the small-sliding same-layer pairs). With ``n_owned``
+    (distributed), the pairs whose window starts on an owned node."""
+    chains = wire_chains(geometry)
+    tangents = geometry.tangents()
+    groups = []
+    for windows in same_layer_windows(geometry, pairs, settings.reach, chains):
+        if n_owned is not None:
+            blocks = input_to_block[windows.nodes]
+            windows = windows.select(owned_rows(blocks, n_owned, "same-layer pairs"))
+        if not len(windows.rows):
+            continue
+        _, law, friction = same_layer_laws(geometry, pairs, windows.rows, settings)
         groups.append(
-            sliding_group(pairs, windows, chains, *laws, tangents=tangents, blocks=input_to_block)
-        )
+            sliding_group(
+                _same_layer_line_pairs(geometry, pairs, windows.rows), windows, chains, law,
+                friction, tangents=tangents, blocks=input_to_block,
+                weights=pairs.weight[windows.rows],
+            )
+        )  # fmt: skip
     return groups
 
 

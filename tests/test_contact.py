@@ -498,8 +498,6 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(compliance="stiff")
     with pytest.raises(CableError, match="slip 'centre' is unknown; choose surface or centreline"):
         ContactSettings(slip="centre")
-    with pytest.raises(CableError, match='slip = "centreline" needs model = "small"'):
-        ContactSettings(slip="centreline", model="large")
     from strand.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
 
     with pytest.raises(CaseError, match=r"unknown setting\(s\) in \[contact\]: \['kn'\]"):

@@ -62,18 +62,16 @@ def test_pairs_cover_every_wire_once_with_their_gaps():
             assert np.all(closed)
 
 
-def test_packed_layers_are_the_default_in_small_sliding():
-    """Same-layer contact is on by default where it is built (small sliding), off in large."""
+def test_packed_layers_are_the_default():
+    """Same-layer contact is on by default, packed, in small and large sliding."""
     assert ContactSettings().same_layer == "packed"
-    assert ContactSettings(model="large").same_layer == "off"
+    assert ContactSettings(model="large").same_layer == "packed"
     assert ContactSettings(same_layer="nominal").same_layer == "nominal"
 
 
 def test_settings_are_checked():
     with pytest.raises(CableError, match="same_layer 'tight' is unknown"):
         ContactSettings(same_layer="tight")
-    with pytest.raises(CableError, match='needs model = "small"'):
-        ContactSettings(same_layer="nominal", model="large")
 
 
 def _seven_wire(outer_diameter: float):

@@ -17,15 +17,19 @@ gradient are continuous across nodes. Helices touch at nodes with the analytic t
 closest points start exactly there.
 
 The same laws as the small-sliding element apply (the law objects of ``strand.contact.laws``,
-through the shared ``PairGroup``), and the same slip measure: the relative motion of the two surface points
-currently in contact since the last converged step (translations and rotations interpolated
-linearly at the closest points, lever arms r n), in the plane normal to n frozen over the step.
+through the shared ``PairGroup``), and the same two slip measures (``slip``):
+
+* "surface": the relative motion of the two surface points currently in contact since the last
+  converged step (translations and rotations interpolated linearly at the closest points, lever
+  arms r n), in the plane normal to n frozen over the step;
+* "centreline": the motion of the closest points' parameters, Δg_T = a'Δξ − b'Δη, linearised at
+  the step's start (``strand.contact.sliding_slip``): blind to a wire's spin.
 
 Tangent: the normal part is exact. The closest-point parameters solve a small Newton problem per
 pair; one more Newton step in complex arithmetic carries their derivatives, so the complex step of
-the hand-written gradient gives the Hessian including ∂ξ/∂q. The friction part ignores the motion
-of the contact point within a step (good enough for Newton; its quadratic rate is lost while
-points slide).
+the hand-written gradient gives the Hessian including ∂ξ/∂q. The centre-line friction part is
+exact too (its S is frozen over the step); the surface one ignores the motion of the contact point
+within a step (good enough for Newton; its quadratic rate is lost while points slide).
 
 The pattern reserves the whole window, so segment changes need no new non-zeros; a pair whose
 closest point wants to leave its window raises an error naming it. ``strand.contact.windows``
@@ -38,9 +42,11 @@ import numpy as np
 import numpy.typing as npt
 
 from .centreline import crossing_kernel, line_kernel
+from .element import check_slip
 from .group import PairGroup, PairKinematics
 from .kinematics import skew
 from .laws import FrictionLaw, NormalLaw
+from .sliding_slip import centreline_slip_operator
 
 __all__ = ["SlidingGroup", "SlidingWindowError"]
 
@@ -70,6 +76,7 @@ class SlidingGroup(PairGroup):
         index: the pairs' numbers (for messages); wire_end: (P, 4) the window's first/last node of
             wire a, then of wire b, is the wire's end (a point may stop there).
         initial_gap: (P,) gap at t = 0, m (keyword; default 0: the pairs touch, and start closed).
+        slip: the friction's slip measure, "surface" or "centreline" (keyword; module docstring).
     """
 
     #: a pair keeps its segment while its closest point stays within this fraction of a segment
@@ -85,7 +92,8 @@ class SlidingGroup(PairGroup):
     def __init__(self, stencils, initial_positions, na: int, line: bool, start,
                  normal_law: NormalLaw, friction_law: FrictionLaw | None, index=None,
                  wire_end=None, radius_a=0.0, radius_b=0.0, start_parameters=None, *,
-                 tangents, initial_gap=None):  # fmt: skip
+                 tangents, initial_gap=None, slip: str = "surface"):  # fmt: skip
+        self.slip = check_slip(slip)
         n_pairs, k = np.shape(stencils)
         # the initial normal is known once the closest points are: set below
         super().__init__(stencils, normal_law, friction_law, np.zeros((n_pairs, 3)), index)
@@ -119,6 +127,8 @@ class SlidingGroup(PairGroup):
         self.state.normal = n_initial.copy()
         self._w_old = np.zeros((n_pairs, k, 6))  # window unknowns at the last converged step
         self._committed = (self.segment.copy(), self.parameter.copy())
+        self._S: Array | None = None  # the centre-line slip operator of the step
+        self._commit_kinematics(self._w_old)
 
     # -- closest points ---------------------------------------------------------------------------
     def _active(self, x, rot, rows=None):
@@ -207,7 +217,7 @@ class SlidingGroup(PairGroup):
             beyond[near] = dist <= self.g0[near]
         xi, eta = np.where(held, np.clip(xi, 0, 1), xi), np.where(held, np.clip(eta, 0, 1), eta)
         self.parameter[:, 0], self.parameter[:, 1] = xi, eta  # next projection starts inside
-        free = ~held
+        self._free = free = ~held
         dist, grad, n, xi, eta = self._kernel(y, data, xi, eta, free, 0)
         self._shape = np.column_stack(
             [1 - xi, xi] + ([np.ones_like(xi)] if self.line else [1 - eta, eta])
@@ -250,6 +260,8 @@ class SlidingGroup(PairGroup):
                 K[sel[:, None, None], c[:, :, None], c[:, None, :]] += scale[sel, None, None] * h
 
         def slip():
+            if self.slip == "centreline":
+                return self.slip_operator(), (W - self._w_old).reshape(n_pairs, -1)
             # slip of the surface points in contact since the last converged step, as in the
             # small-sliding element: P_n[Δu_b − r_b Δθ_b×n − Δu_a − r_a Δθ_a×n], interpolated
             # with the current closest-point weights; n and the plane frozen over the step
@@ -284,9 +296,34 @@ class SlidingGroup(PairGroup):
         self.segment = np.array(arrays["segment"], dtype=self.segment.dtype)
         self.parameter = np.array(arrays["parameter"], dtype=float)
 
+    def slip_operator(self) -> Array:
+        """The centre-line slip operator of the step, S (P, 3, 6k) on the window's unknowns:
+        Δg_T = S Δw since the last converged step (``strand.contact.sliding_slip``)."""
+        if self._S is None:
+            raise ValueError('the slip operator is that of slip = "centreline"')
+        return self._S
+
     def _commit_kinematics(self, W: Array) -> None:
         self._w_old = W.copy()
+        if self.slip == "centreline":
+            self._S = self._centreline_operator(W)
         self._committed = (self.segment.copy(), self.parameter.copy())
+
+    def _centreline_operator(self, W: Array) -> Array:
+        """S (P, 3, 6k) of the centre-line slip at the converged window unknowns W: at its
+        closest points, re-projected (a restored state has no evaluation yet)."""
+        n_pairs, k = self.stencils.shape
+        x, rot = self.X + W[..., :3], W[..., 3:]
+        self._kinematics_of(x, rot, hessian=False)
+        _, y, data = self._active(x, rot)
+        S = centreline_slip_operator(
+            line_kernel if self.line else crossing_kernel, y, data, self.parameter[:, 0],
+            self.parameter[:, 1], self._free, self.line,
+        )  # fmt: skip
+        cols = (6 * self._nodes[:, :, None] + np.arange(6)).reshape(n_pairs, -1)[:, : y.shape[1]]
+        out = np.zeros((n_pairs, 3, 6 * k))
+        out[np.arange(n_pairs)[:, None], :, cols] = S.transpose(0, 2, 1)
+        return out
 
     def _rollback_kinematics(self) -> None:
         self.segment, self.parameter = (a.copy() for a in self._committed)

@@ -112,12 +112,22 @@ class SlidingWindows(NamedTuple):
         return SlidingWindows(self.rows[mask], self.nodes[mask], self.na, self.ends[mask])
 
 
-def chain_windows(pairs: NodePairs, chains: NodeChains, reach: float) -> list[SlidingWindows]:
-    """The windows of ``pairs`` on ``chains`` within ``reach`` (m), grouped by their sizes."""
+def chain_windows(
+    pairs: NodePairs, chains: NodeChains, reach: float, on_segment: bool = False
+) -> list[SlidingWindows]:
+    """The windows of ``pairs`` on ``chains`` within ``reach`` (m), grouped by their sizes.
+    ``on_segment``: the pairs' contact points start on the segments from their nodes a to the
+    next nodes of a's chain, and a's windows reach that far either side of the whole segment."""
     if not (isinstance(reach, int | float) and reach > 0):
         raise ContactError(f"sliding reach = {reach!r}: must be a positive number (m)")
     P = len(pairs)
     a_first, a_last, a_ends = chains.stretch(pairs.a, reach)
+    if on_segment:
+        at = chains.where[pairs.a]
+        if np.any(at + 1 >= chains.offsets[chains.chain[at] + 1]):
+            raise ContactError("a pair starting on a segment has its node a at its chain's end")
+        _, a_last, next_ends = chains.stretch(chains.nodes[at + 1], reach)
+        a_ends = np.column_stack([a_ends[:, 0], next_ends[:, 1]])
     if pairs.line:
         b_first = b_last = np.zeros(P, dtype=np.int64)
         b_ends = np.ones((P, 2), dtype=bool)
@@ -147,27 +157,38 @@ def sliding_group(
     friction_law: FrictionLaw | None = None,
     tangents: npt.ArrayLike | None = None,
     blocks: npt.ArrayLike | None = None,
+    weights: npt.ArrayLike | None = None,
+    slip: str = "surface",
 ) -> SlidingGroup:
     """The large-sliding group of ``pairs`` (one per window of ``windows``, in order) whose
-    contact points start at the pairs' nodes.
+    contact points start at the pairs' nodes, or on a's segments (``weights``).
 
     Args:
         normal_law, friction_law: the pairs' laws (friction None: frictionless).
         tangents: (n, 3) initial unit tangents of the centrelines at the nodes (default: chords,
             ``NodeChains.tangents``).
         blocks: (n,) the local dof block of each node, if nodes are not dof blocks themselves.
+        weights: (P,) where the contact points start on the segments from node a to the next
+            node of a's chain, in [0, 1] (windows from ``chain_windows(..., on_segment=True)``;
+            default: at node a).
+        slip: the friction's slip measure, "surface" or "centreline" (``SlidingGroup``).
     """
     nodes, na = windows.nodes, windows.na
     if len(pairs) != len(nodes):
         raise ContactError(f"{len(pairs)} pairs for {len(nodes)} windows")
     nb = nodes.shape[1] - na
     # the closest points start at the pair's nodes: ξ = 0 on the segment they begin (1 on the
-    # last segment when the node ends the window)
+    # last segment when the node ends the window), or at ξ = weight on that segment
     a_pos = chains.where[pairs.a] - chains.where[nodes[:, 0]]
     b_pos = 0 * a_pos if pairs.line else chains.where[pairs.b] - chains.where[nodes[:, na]]
     start_a = np.minimum(a_pos, na - 2)
     start_b = np.zeros(len(pairs), dtype=np.intp) if pairs.line else np.minimum(b_pos, nb - 2)
     start_parameters = np.column_stack([a_pos - start_a, b_pos - start_b]).astype(float)
+    if weights is not None:
+        weights = np.asarray(weights, dtype=float)
+        if np.any((weights < 0) | (weights > 1)) or np.any(a_pos > na - 2):
+            raise ContactError("segment weights must lie in [0, 1], on a segment of a's window")
+        start_parameters[:, 0] = weights
     tangents = chains.tangents() if tangents is None else np.asarray(tangents, dtype=float)
     stencils = nodes if blocks is None else np.asarray(blocks)[nodes]
     return SlidingGroup(stencils, chains.positions[nodes], na, pairs.line,
@@ -175,7 +196,7 @@ def sliding_group(
                         index=pairs.index, wire_end=windows.ends,
                         radius_a=pairs.radius_a, radius_b=pairs.radius_b,
                         start_parameters=start_parameters, tangents=tangents[nodes],
-                        initial_gap=pairs.initial_gap)  # fmt: skip
+                        initial_gap=pairs.initial_gap, slip=slip)  # fmt: skip
 
 
 def _law_rows(law, rows: npt.NDArray[np.intp], n: int):
@@ -217,6 +238,7 @@ def sliding_terms(
     normal_law: NormalLaw,
     friction_law: FrictionLaw | None = None,
     tangents: npt.ArrayLike | None = None,
+    slip: str = "surface",
 ) -> list[SlidingGroup]:
     """Large-sliding contact on ``pairs``: the ``PairTerms`` to give
     ``NonlinearProblem(terms=...)``, one ``SlidingGroup`` per window size.
@@ -229,6 +251,7 @@ def sliding_terms(
             pair (cut to each group's pairs).
         tangents: (n, 3) initial unit tangents at the nodes (default: chords between each node's
             neighbours along its chain).
+        slip: the friction's slip measure, "surface" or "centreline" (``SlidingGroup``).
     """
     nodes = beam_nodes(V)
     node_chains = NodeChains(chains, nodes.positions)
@@ -237,6 +260,8 @@ def sliding_terms(
     for windows in chain_windows(pairs, node_chains, reach):
         laws = (_law_rows(law, windows.rows, len(pairs)) for law in (normal_law, friction_law))
         groups.append(
-            sliding_group(pairs.select(windows.rows), windows, node_chains, *laws, tangents)
+            sliding_group(
+                pairs.select(windows.rows), windows, node_chains, *laws, tangents, slip=slip
+            )
         )
     return groups

@@ -21,16 +21,16 @@ from collections.abc import Sequence
 import numpy as np
 from petsc4py import PETSc
 
-__all__ = ["ORDERINGS", "cheapest_ordering", "factorisation_flops"]
+__all__ = ["ORDERINGS", "cheapest_ordering", "factorisation_flops", "pattern_lu"]
 
 #: MUMPS's sequential orderings (``ICNTL(7)``) by name
 ORDERINGS = {"amd": 0, "amf": 2, "scotch": 3, "pord": 4, "metis": 5, "qamd": 6}
 
 
-def factorisation_flops(A: PETSc.Mat, ordering: int) -> float:
-    """Operations of MUMPS's LU of ``A``'s sparsity pattern with ``ICNTL(7) = ordering``
-    (``RINFOG(3)``), its values replaced by a diagonally dominant matrix (module docstring).
-    Collective on ``A``'s communicator."""
+def pattern_lu(A: PETSc.Mat, ordering: int) -> tuple[float, float]:
+    """MUMPS's operations (``RINFOG(3)``) and factor entries (``INFOG(29)``) of the LU of
+    ``A``'s sparsity pattern with ``ICNTL(7) = ordering``, its values replaced by a diagonally
+    dominant matrix (module docstring). Collective on ``A``'s communicator."""
     B = A.duplicate(copy=False)
     try:
         ia, ja, _ = A.getValuesCSR()
@@ -50,11 +50,17 @@ def factorisation_flops(A: PETSc.Mat, ordering: int) -> float:
             if A.comm.size > 1:
                 F.setMumpsIcntl(14, 100)  # strand.problem: MUMPS's distributed workspace
             ksp.setUp()
-            return float(F.getMumpsRinfog(3))
+            return float(F.getMumpsRinfog(3)), float(F.getMumpsInfog(29))
         finally:
             ksp.destroy()
     finally:
         B.destroy()
+
+
+def factorisation_flops(A: PETSc.Mat, ordering: int) -> float:
+    """MUMPS's operations for the LU of ``A``'s pattern with ``ICNTL(7) = ordering``
+    (``pattern_lu``)."""
+    return pattern_lu(A, ordering)[0]
 
 
 def cheapest_ordering(

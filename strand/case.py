@@ -84,14 +84,14 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               #   or tension_swing (N); runs the amplitudes as the sweep and
                               #   writes Miner's sum per wire and pair: spectrum.csv, spectrum.txt
 
-Unknown keys and bad values are errors naming the file and the key, raised before any computing.
+Unknown keys and bad values are errors naming the file and the key, raised before any computing:
+this module checks each value alone, ``strand.case_checks`` the settings against one another.
 """
 
 from __future__ import annotations
 
 import math
 import tomllib
-from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
@@ -286,102 +286,18 @@ def _cable(spec, base: Path | None, source: str) -> Cable:
         raise CaseError(f"{source}: cable: {e}") from None
 
 
-def _in(source: str, check: Callable, *args):
-    """Run ``check(*args)``, its ``CaseError`` prefixed with the case's ``source``."""
-    try:
-        return check(*args)
-    except CaseError as e:
-        raise CaseError(f"{source}: {e}") from None
-
-
-def _check_steps_and_load(case: Case) -> None:
-    from . import kinds
-
-    steps, load, mesh = case.steps, case.load, case.mesh
-    if steps.line_search not in LINE_SEARCHES:
-        raise CaseError(
-            f"[steps] line_search = {steps.line_search!r}: expected one of {list(LINE_SEARCHES)}"
-        )
-    if steps.control not in STEP_CONTROLS:
-        raise CaseError(
-            f"[steps] control = {steps.control!r}: expected one of {list(STEP_CONTROLS)}"
-        )
-    for kind in kinds.registered():  # every kind's own settings, whichever the case's
-        kind.check_settings(load.by_kind[kind.name], steps.by_kind[kind.name])
-    if mesh.h_max >= mesh.length:
-        raise CaseError(
-            f"[mesh] h_max = {mesh.h_max} m must be shorter than the span [mesh] length = "
-            f"{mesh.length} m"
-        )
-    kinds.kind_of(case).check_case(case)
-    if load.sweep and not any(load.cycle):
-        raise CaseError(
-            f"[load] sweep = {list(load.sweep)} needs a cycle with a target other than 0 "
-            f"(cycle = {list(load.cycle)} stays at zero load)"
-        )
-
-
-def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
-    from .fatigue.sn import SN_CURVES
-
-    if fatigue.sn_curve not in (*SN_CURVES, "custom"):
-        raise CaseError(
-            f"[fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
-            f'{sorted(SN_CURVES)} or "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2)'
-        )
-    if fatigue.steel_sn_curve not in (*SN_CURVES, "none"):
-        raise CaseError(
-            f"[fatigue] steel_sn_curve = {fatigue.steel_sn_curve!r} is unknown; choose one of "
-            f'{sorted(SN_CURVES)} or "none"'
-        )
-    try:
-        fatigue.curve()
-    except ValueError as e:
-        raise CaseError(f"[fatigue] {e}") from None
-    bad = [
-        i for i in fatigue.sn_layers if not float(i).is_integer() or not 0 <= i < len(cable.layers)
-    ]
-    if bad:
-        raise CaseError(
-            f"[fatigue] sn_layers = {list(fatigue.sn_layers)}: layers are numbered 0 (core) to "
-            f"{len(cable.layers) - 1}"
-        )
-
-
-def _spectrum_sweep(case: Case) -> Case:
-    """``case`` with the amplitudes of ``[fatigue] spectrum`` as its ``[load] sweep``: a
-    spectrum runs as a sweep; refused where the sweep lists other amplitudes, or without the
-    fatigue outputs, which give each amplitude's damage."""
-    spectrum, sweep = case.fatigue.spectrum, case.load.sweep
-    if not spectrum:
-        return case
-    amplitudes = tuple(a for a, _ in spectrum)
-    if not case.fatigue.outputs:
-        raise CaseError("[fatigue] spectrum needs [fatigue] outputs = true (each amplitude's "
-                        "damage comes from its fatigue report)")  # fmt: skip
-    if not any(case.load.cycle):
-        raise CaseError(f"[fatigue] spectrum needs a cycle with a target other than 0 (cycle = "
-                        f"{list(case.load.cycle)} stays at zero load)")  # fmt: skip
-    if sweep and sorted(sweep) != sorted(amplitudes):
-        raise CaseError(
-            f"[fatigue] spectrum amplitudes {list(amplitudes)} differ from [load] sweep = "
-            f"{list(sweep)}; give the spectrum alone: it runs its amplitudes as the sweep"
-        )
-    return case if sweep else replace(case, load=case.load.with_values(sweep=amplitudes))
-
-
 def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
     """The case of ``data`` (a case file's tables; relative cable files from ``base``), every
     setting checked (``CaseError`` naming ``source`` and the setting)."""
+    from .case_checks import checked_case  # it runs the set-up kinds' checks, which import Case
+
     allowed = ["cable", *SECTIONS]
     unknown = sorted(set(data) - set(allowed))
     if unknown:
         raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: {allowed}")
     cable = _cable(data.get("cable", "cardinal"), base, source)
     sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
-    case = _in(source, _spectrum_sweep, Case(cable, **sections, source=source))
-    _in(source, _check_steps_and_load, case)
-    _in(source, _check_fatigue, case.fatigue, cable)
+    case = checked_case(Case(cable, **sections, source=source))
     return replace(case, unset_loads=_unset_loads(data, case))
 
 

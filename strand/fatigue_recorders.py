@@ -107,8 +107,10 @@ class WireSectionHistory(_CycleHistory):
     outward radius; the load direction for the core) and e₂ = t × e₁, and the torque T = m·t
     (N m, about the current tangent t): what surface stresses follow from
     (``strand.fatigue.stress``); the spin θ·t (rad, the section's rotation about t: its nodes'
-    mean rotation vector projected on t, ``post.section_spin``), and the displacement of the
-    core's nodes ``core_u`` (m). Static: wire, layer, initial z (m), angle φ (deg, as
+    mean rotation vector projected on t, ``post.section_spin``), the displacement of the
+    core's nodes ``core_u`` (m), and ``midspan_force`` (3,): the force resultant Σ n (N; the
+    wires' spatial section forces, axial and shear) of the cross-section z = L/2
+    (``post.section_resultants``), whose z component is the strand's tension there. Static: wire, layer, initial z (m), angle φ (deg, as
     ``axial_forces.csv``), wire diameter (m), and the core nodes' initial z ``core_z``."""
 
     def __init__(self, folder: Path, model, cells_now, direction, parameter: str):
@@ -126,13 +128,15 @@ class WireSectionHistory(_CycleHistory):
 
     def _arrays(self, ctx: StepContext) -> dict:
         from .fatigue.stress import section_components, section_frames
+        from .post import section_resultants
 
         c = ctx.cells
         e1, e2 = section_frames(c.tangent, c.radial, fallback=self.direction)
         m = section_components(c.moment, c.tangent, e1, e2)
         u = self.model.positions()[self.core] - self.model.geometry.points[self.core]
+        midspan = section_resultants(self.model, c, self.model.geometry.length / 2)[1]
         return {"axial": c.axial, "m1": m[:, 0], "m2": m[:, 1], "torque": c.torque,
-                "spin": c.spin, "core_u": u}  # fmt: skip
+                "spin": c.spin, "core_u": u, "midspan_force": midspan}  # fmt: skip
 
     def close(self) -> None:
         self.writer.close()

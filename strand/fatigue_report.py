@@ -258,33 +258,34 @@ def wire_results(sections: History, elements: dict[str, Array], clamp: Array, cu
     return out
 
 
-def strand_tension(sections: History, cable: Cable, length: float) -> Array:
-    """The strand's tension (N) per step at midspan: Σ N cos α over every wire's element
-    nearest z = ``length``/2 (the wires' shear forces left out)."""
-    st = sections.static
-    cos = np.cos([lay.alpha for lay in cable.layers])
-    cells = [np.flatnonzero(st["wire"] == w)[np.argmin(np.abs(st["z"][st["wire"] == w]
-                                                              - length / 2))]
-             for w in np.unique(st["wire"])]  # fmt: skip
-    return sections["axial"][:, cells] @ cos[st["layer"][cells]]
+def strand_tension(sections: History) -> Array:
+    """The strand's tension (N) per step at midspan: the z component of the force resultant of
+    the cross-section z = L/2, Σ n over the wires it cuts (their axial and shear forces,
+    ``midspan_force``). Where the lateral loads have no axial component, equilibrium of the
+    half strand makes it the end force, up to the axial forces that same-layer contact pairs
+    carry across the section where their nodes lie on both sides of it (docs/fatigue.md)."""
+    return sections["midspan_force"][:, 2]
 
 
-def tension_check(sections: History, cable: Cable, length: float, breaking_strength: float,
+def tension_check(sections: History, cable: Cable, breaking_strength: float,
                   wires: dict[str, Array]) -> dict:  # fmt: skip
     """The mooring standards' strand-level check on the strand's tension history, repeating:
     DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage per cycle, beside the
     wire-level model's largest; ``cycle`` False where the tension stays within
-    ``TENSION_CYCLE_SHARE`` of its mean."""
-    tension = strand_tension(sections, cable, length)
+    ``TENSION_CYCLE_SHARE`` of its mean. ``mean`` and ``range`` (N) are the largest cycle's:
+    (max + min)/2 and max − min of the history. A mean over the recorded steps would weigh
+    each leg by how finely the run stepped it."""
+    tension = strand_tension(sections)
     c = repeating_cycles(tension)
     area = sum(lay.wires * lay.wire.area for lay in cable.layers)
     dnv, api = tension_damage(c.range, c.count, c.mean, area, breaking_strength)
     largest = float(c.range.max()) if len(c) else 0.0
+    mean = 0.5 * float(tension.max() + tension.min())
     damage = wires["damage"]
     worst = int(np.nanargmax(damage)) if not np.all(np.isnan(damage)) else None
     return {
-        "mean": float(np.mean(tension)), "range": largest, "area": area,
-        "cycle": largest >= TENSION_CYCLE_SHARE * abs(float(np.mean(tension))),
+        "mean": mean, "range": largest, "area": area,
+        "cycle": largest >= TENSION_CYCLE_SHARE * abs(mean),
         "dnv": dnv, "api": api, "wire": worst,
         "wire_damage": float(damage[worst]) if worst is not None else np.nan,
     }  # fmt: skip
@@ -342,7 +343,7 @@ def fatigue_report(
     elements["clamp"] = in_clamp_zone(sections.static["z"], length, end_zone)
     elements |= {k: np.asarray(sections.static[k]) for k in ("layer", "wire", "z")}
     wires = wire_results(sections, elements, elements["clamp"], curves)
-    tn = tension_check(sections, cable, length, settings.breaking_strength, wires)
+    tn = tension_check(sections, cable, settings.breaking_strength, wires)
     ps = (
         poffenberger_swart_check(sections, elements, cable, tension, direction,
                                  settings.clamp_distance)

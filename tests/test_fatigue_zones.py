@@ -162,7 +162,7 @@ def test_hot_spots_and_damage_are_split_by_zone(seven_wire_run):
     hot = [row for row in free.split("hot spots")[1].split("first wires")[0].splitlines()[2:]
            if row.strip()]  # fmt: skip
     assert len(hot) == 5 and all(0.02 <= float(line.split()[3]) <= 0.08 for line in hot)
-    tension = strand_tension(sections, cable, 0.1)
+    tension = strand_tension(sections)
     np.testing.assert_allclose(tension, 10e3, rtol=1e-2)
     assert "no tension cycle" in r.text
     assert "Poffenberger–Swart skipped" in r.text and r.poffenberger_swart["holds"] is False

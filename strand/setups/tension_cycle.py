@@ -34,11 +34,16 @@ class TensionCycleState:
 
 @dataclass(frozen=True)
 class TensionSection:
-    """Resultants of the midspan section during the tension cycle."""
+    """Resultants of the midspan section z = L/2 during the tension cycle: of the wires' full
+    section forces n (axial and shear) and moments over the elements the section cuts. The saddle
+    load is lateral, so equilibrium of the half strand makes ``axial_sum`` the end force, up to
+    the axial forces that same-layer contact pairs (a node against a neighbour's segment) carry
+    across the section where their nodes lie on both sides of it (none without same-layer
+    contact: ``tests/test_tension_cycle.py``)."""
 
     tension_swing: float = quantity("N")
     end_force: float = quantity("N")
-    axial_sum: float = quantity("N", "Σ N_z over the section: equals the end force")
+    axial_sum: float = quantity("N", "z component of Σ n over the section: the end force")
     moment: float = quantity("Nm", "bending moment along the saddle's moment axis")
 
 
@@ -84,8 +89,8 @@ class TensionCycleTest(SaddleTest):
         )  # fmt: skip
 
     def moment_curvature(self, cells, residual=None) -> TensionSection:
-        """The midspan section's axial force sum (N) and bending moment (N m, about the axis
-        e_z × ``direction``)."""
+        """The midspan section's axial resultant Σ n_z (N, axial and shear forces) and bending
+        moment (N m, about the axis e_z × ``direction``)."""
         L = self.model.geometry.length
         moment, force = section_resultants(self.model, cells, L / 2)
         b = np.cross([0.0, 0.0, 1.0], self.direction)

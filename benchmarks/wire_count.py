@@ -170,6 +170,10 @@ def worker(wires: int, length: float, folder: Path, settings: list[str]) -> None
     from mpi4py import MPI
     from petsc4py import PETSc
 
+    from strand.parallel import abort_on_error
+
+    abort_on_error()  # an error on one rank ends both (else the other waits for ever)
+
     from strand.build import build_problem, results_folder
     from strand.parallel import root_stream
     from strand.runner import run_programme_with_outputs

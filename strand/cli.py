@@ -173,6 +173,9 @@ def _spectrum(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    from .parallel import abort_on_error
+
+    abort_on_error()  # an error on one rank of a distributed run ends them all
     parser = argparse.ArgumentParser(
         prog="strand", description=USAGE, formatter_class=argparse.RawDescriptionHelpFormatter
     )

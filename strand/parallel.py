@@ -16,7 +16,7 @@ from pathlib import Path
 
 from mpi4py import MPI
 
-__all__ = ["is_root", "root_open", "on_root", "root_stream", "serial_only"]
+__all__ = ["is_root", "root_open", "on_root", "root_stream", "serial_only", "abort_on_error"]
 
 
 def is_root(comm: MPI.Comm = MPI.COMM_WORLD) -> bool:
@@ -58,3 +58,20 @@ def serial_only(what: str, comm: MPI.Comm = MPI.COMM_WORLD) -> None:
         if is_root(comm):
             print(f"strand: {what} runs on one process: start it without mpirun", file=sys.stderr)
         raise SystemExit(2)
+
+
+def abort_on_error(comm: MPI.Comm = MPI.COMM_WORLD) -> None:
+    """In a distributed run, make an exception that escapes on one rank end every rank: print
+    its traceback, then ``comm.Abort(1)``. Without it the other ranks wait for that rank at
+    their next collective call, for ever (e.g. an error in what rank 0 alone writes)."""
+    if comm.size == 1 or getattr(sys.excepthook, "aborts", False):
+        return
+    previous = sys.excepthook
+
+    def hook(kind, value, traceback):
+        previous(kind, value, traceback)
+        sys.stderr.flush()
+        comm.Abort(1)
+
+    hook.aborts = True
+    sys.excepthook = hook

@@ -312,3 +312,21 @@ def test_the_contact_api_is_collective_on_2_ranks(tmp_path):
     assert sum("split: candidate_pairs: 1 of 1 pairs" in line and "slab_partitioner" in line
                for line in lines) == 2, lines  # fmt: skip
     assert lines.count("load -33.0") == 2, lines
+
+
+@needs_mpirun
+def test_an_error_on_one_rank_ends_every_rank(tmp_path):
+    """An exception that escapes on rank 0 alone (as in what rank 0 alone writes) ends the run
+    on both ranks with its traceback and a non-zero exit, instead of leaving rank 1 waiting at
+    its next collective call for ever."""
+    script = tmp_path / "fails_on_root.py"
+    script.write_text(
+        "import strand\nfrom mpi4py import MPI\nfrom strand.parallel import abort_on_error\n"
+        "abort_on_error()\n"
+        "if MPI.COMM_WORLD.rank == 0:\n    raise KeyError('only on rank 0')\n"
+        "MPI.COMM_WORLD.barrier()\n"
+    )
+    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert done.returncode != 0
+    assert "KeyError: 'only on rank 0'" in done.stderr

@@ -18,16 +18,23 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     friction = true           # Coulomb coefficients of the cable; false: frictionless
     model = "small"           # small sliding (pairs fixed at t = 0) | large (re-projected: the baseline)
     reach = 1e-3              # m, large sliding: sliding room reserved either side of each pair
+    same_layer = "auto"       # contact between neighbours of a layer: auto (packed) | packed
+                              #   (touching, the spare gap in one place) | nominal | off
+    slip = "surface"          # friction's slip: surface points | centreline (the seed paper's)
 
     [load]
     kind = "saddle"           # saddle: midspan saddle load (the seed paper's test)
                               # bending: uniform bending by end rotations (the section's M–κ)
+                              # tension_cycle: the end force cycled by tension_swing (N), with
+                              #   a saddle load fixed_lateral (N) held at midspan
     tension = 40e3            # N, end force, held during bending
     lateral = 4.3e3           # N, saddle load amplitude
     curvature = 0.5           # 1/m, bending: nominal curvature amplitude
     cycle = [1.0, 0.0, -1.0, 0.0]   # targets after tensioning, in units of lateral or curvature
                                     # ([0.0]: the tension alone)
     saddle_length = 0.02      # m, axial length of the saddle at midspan
+    control = "force"         # saddle: force (lateral) | displacement: the saddle load that
+                              #   gives deflection (m, midspan) or yb (m, Y_b at clamp_distance)
     zone = 0.4                # m, bending: central zone where curvature is measured
     direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load / stretched fibre
     sweep = []                # amplitudes of lateral (or curvature) to run, each from the same
@@ -37,12 +44,15 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     [steps]
     tension = 1e3             # N, first tension increment (grows ×growth after easy steps);
                               # the first step closes every contact pair without friction, so
-                              # its size sets the wire forces' load-step error (README)
+                              # its size sets the wire forces' load-step error (benchmarks/speed.py)
     lateral = 250.0           # N, first lateral increment of each leg of the cycle
     lateral_max = 400.0       # N, largest lateral increment
     curvature = 0.005         # 1/m, bending: first curvature increment of each leg
     curvature_max = 0.05      # 1/m, bending: largest curvature increment
     growth = 1.5
+    control = "growth"        # growth: ×growth after easy solves | error: from the predictor's
+    error_tolerance = 1e-6    #   miss (m) aimed at by each step
+    retry = false             # retry a failed step once with the other predictor, then halve
     cuts = 6                  # halvings allowed before a step is declared failed
     max_iterations = 12       # Newton iterations per attempt
     stall = true              # cut an attempt whose residual has not halved in two iterations

@@ -220,16 +220,9 @@ def factorise(A, icntl: dict[int, int]) -> dict:
     factorisation's times (s), MUMPS's report, the residual, or the error."""
     from petsc4py import PETSc
 
-    ksp = PETSc.KSP().create(A.comm)
-    ksp.setOperators(A)
-    ksp.setType("preonly")
-    pc = ksp.getPC()
-    pc.setType("lu")
-    pc.setFactorSolverType("mumps")
-    pc.setFactorSetUpSolverType()
-    F = pc.getFactorMatrix()
-    for k, v in {**RUN_ICNTL, **icntl}.items():
-        F.setMumpsIcntl(k, v)
+    from strand.solver.ordering import mumps_lu
+
+    ksp, F = mumps_lu(A, {**RUN_ICNTL, **icntl})
     events = [PETSc.Log.Event(e) for e in ("MatLUFactorSym", "MatLUFactorNum")]
     before = [e.getPerfInfo()["time"] for e in events]
     out: dict = {}

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
+from .input_file import read_text
+
 __all__ = ["CableError", "Wire", "Layer", "Cable", "load_cable", "cardinal", "judge120"]
 
 
@@ -174,11 +176,9 @@ def cable_from_dict(data: dict) -> Cable:
 def load_cable(path: str | Path) -> Cable:
     """Read a cable description from a TOML file."""
     path = Path(path)
+    text = read_text(path, "cable file (TOML)", CableError)
     try:
-        with path.open("rb") as f:
-            data = tomllib.load(f)
-    except FileNotFoundError:
-        raise CableError(f"{path}: no such file") from None
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise CableError(f"{path}: not valid TOML ({e})") from None
     try:

@@ -108,6 +108,7 @@ from typing import Any
 
 from .cable import Cable, CableError, cable_from_dict, cardinal, judge120, load_cable
 from .contact_settings import ContactSettings
+from .input_file import read_text
 from .settings import (
     KIND_SECTIONS,
     FatigueSettings,
@@ -377,16 +378,9 @@ def load_case(path: str | Path | None = None, settings: list[str] = ()) -> Case:
         source = "built-in default" + (" with --set" if settings else "")
         return case_from_dict(overrides, source=source)
     path = Path(path)
+    text = read_text(path, "case file (TOML)", CaseError, missing="case file")
     try:
-        data = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise CaseError(f"{path}: no such case file") from None
-    except IsADirectoryError:
-        raise CaseError(f"{path}: is a folder; give a case file (TOML)") from None
-    except UnicodeDecodeError:
-        raise CaseError(f"{path}: not a text file; give a case file (TOML)") from None
-    except OSError as e:
-        raise CaseError(f"{path}: cannot be read ({e.strerror})") from None
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise CaseError(f"{path}: not valid TOML ({e})") from None
     if "core" in data and "layer" in data:  # a bare cable description is a case too

@@ -23,6 +23,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .fatigue.spectrum import Spectrum, reduce_history
+from .input_file import read_text
 
 __all__ = ["HistoryError", "HistorySpectrum", "read_columns", "history_spectrum", "spectrum_block"]
 
@@ -38,16 +39,7 @@ class HistoryError(ValueError):
 
 
 def _text(path: Path) -> str:
-    try:
-        return path.read_text()
-    except FileNotFoundError:
-        raise HistoryError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise HistoryError(f"{path}: is a folder; give a history file (CSV)") from None
-    except UnicodeDecodeError:
-        raise HistoryError(f"{path}: not a text file; give a history file (CSV)") from None
-    except OSError as e:
-        raise HistoryError(f"{path}: cannot be read ({e.strerror})") from None
+    return read_text(path, "history file (CSV)", HistoryError)
 
 
 def _split(line: str, sep: str | None) -> list[str]:

@@ -21,10 +21,26 @@ from collections.abc import Sequence
 import numpy as np
 from petsc4py import PETSc
 
-__all__ = ["ORDERINGS", "cheapest_ordering", "factorisation_flops", "pattern_lu"]
+__all__ = ["ORDERINGS", "cheapest_ordering", "factorisation_flops", "mumps_lu", "pattern_lu"]
 
 #: MUMPS's sequential orderings (``ICNTL(7)``) by name
 ORDERINGS = {"amd": 0, "amf": 2, "scotch": 3, "pord": 4, "metis": 5, "qamd": 6}
+
+
+def mumps_lu(A: PETSc.Mat, icntl: dict[int, int]) -> tuple[PETSc.KSP, PETSc.Mat]:
+    """A KSP that factorises ``A`` by MUMPS's LU (set up at ``ksp.setUp()``) and its factor
+    matrix, with MUMPS's ``ICNTL`` values ``icntl``; the caller destroys the KSP."""
+    ksp = PETSc.KSP().create(A.comm)
+    ksp.setOperators(A)
+    ksp.setType("preonly")
+    pc = ksp.getPC()
+    pc.setType("lu")
+    pc.setFactorSolverType("mumps")
+    pc.setFactorSetUpSolverType()
+    F = pc.getFactorMatrix()
+    for k, v in icntl.items():
+        F.setMumpsIcntl(k, v)
+    return ksp, F
 
 
 def pattern_lu(A: PETSc.Mat, ordering: int) -> tuple[float, float]:
@@ -37,18 +53,10 @@ def pattern_lu(A: PETSc.Mat, ordering: int) -> tuple[float, float]:
         B.setValuesCSR(ia, ja, np.full(len(ja), -1e-3))
         B.assemble()
         B.shift(1.0)
-        ksp = PETSc.KSP().create(A.comm)
+        # ICNTL(14): strand.problem's distributed workspace
+        icntl = {7: ordering, **({14: 100} if A.comm.size > 1 else {})}
+        ksp, F = mumps_lu(B, icntl)
         try:
-            ksp.setOperators(B)
-            ksp.setType("preonly")
-            pc = ksp.getPC()
-            pc.setType("lu")
-            pc.setFactorSolverType("mumps")
-            pc.setFactorSetUpSolverType()
-            F = pc.getFactorMatrix()
-            F.setMumpsIcntl(7, ordering)
-            if A.comm.size > 1:
-                F.setMumpsIcntl(14, 100)  # strand.problem: MUMPS's distributed workspace
             ksp.setUp()
             return float(F.getMumpsRinfog(3)), float(F.getMumpsInfog(29))
         finally:

@@ -24,9 +24,10 @@ from strand.fatigue import (
     span_error,
     stuck_throughout,
 )
-from strand.fatigue_report import fatigue_report, strand_tension
+from strand.fatigue_report import fatigue_report
 from strand.history import read_history
 from strand.settings import FatigueSettings
+from strand.tension_check import strand_tension
 from strand_cases import SEVEN_WIRE, seven_wire
 
 

@@ -15,9 +15,9 @@ import pytest
 
 from strand.case import CaseError, case_from_dict, load_case
 from strand.cli import main
-from strand.fatigue_report import strand_tension
 from strand.history import read_history
 from strand.post import fibre_model
+from strand.tension_check import strand_tension
 from strand_cases import SEVEN_WIRE
 
 MEAN, SWING = 10e3, 2e3  # N

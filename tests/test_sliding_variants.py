@@ -1,17 +1,13 @@
 """Large sliding with the centre-line slip and with same-layer contact (issue 30, items 2 and 3):
-exact tangents, spin-blindness, agreement with the small-sliding element, same-layer pairs that
-open and close on a 1+6, and the same answer on 1 and 2 ranks."""
+exact tangents, spin-blindness, agreement with the small-sliding element, and the same answer on
+1 and 2 ranks (same-layer pairs opening and closing in both models: tests/test_same_layer.py)."""
 
 from __future__ import annotations
-
-from dataclasses import replace
-from functools import partial
 
 import numpy as np
 import pytest
 from test_mpi import _run_and_compare
 from test_restart import QUIET, assert_continues, uninterrupted_with_checkpoint
-from test_same_layer import _seven_wire
 
 from strand.case import load_case
 from strand.contact.element import ContactGroup, centreline_slip_operator
@@ -20,12 +16,10 @@ from strand.contact.kinematics import rotation_matrix, tangent_map
 from strand.contact.laws import ElasticSlip, PenaltyLaw, hertz_mindlin
 from strand.contact.sliding import SlidingGroup
 from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
 from strand.model import strand_stencils
 from strand.problem import StrandProblem
 from strand.run import run_case
-from strand.same_layer import facing_point_motion, helix_clearance, same_layer_pairs
-from strand.setups.saddle import SaddleTest
+from strand.same_layer import facing_point_motion, same_layer_pairs
 from strand.solver import LoadStepper, NewtonOptions
 from strand.strand_contact import same_layer_windows
 from strand_cases import SEVEN_WIRE, check_state_and_tangent, fd_tangent, needs_mpirun, seven_wire
@@ -295,52 +289,6 @@ def test_facing_point_motion_sees_sliding_and_not_rigid_motion():
     along = np.einsum("pi,pi->p", t[pairs.a], t_b) / np.linalg.norm(t_b, axis=1)
     np.testing.assert_allclose(motion[own], -20e-6 * along[own], rtol=1e-9)
     assert np.all(motion[~on & ~own] == 0)
-
-
-def _tensioned(cable, gaps: str, tension: float = 10e3):
-    """``test_same_layer._tensioned`` in large sliding: a 0.15 m piece of ``cable`` with
-    same-layer pairs ``gaps``, pulled to ``tension`` (N); the mid-piece pairs' gaps and forces,
-    their initial gaps, the layer's radial change (m) and the strand's strain."""
-    geometry = build_geometry(cable, 0.15, 4e-3)
-    problem = StrandProblem(geometry, ContactSettings(same_layer=gaps, model="large"),
-                            NewtonOptions(atol=1e-4, max_it=15), setup=SaddleTest)  # fmt: skip
-    setup = problem.setup
-    LoadStepper(problem.solver, tension / 2, tension / 10).ramp(
-        partial(setup.set, "tension"), 0.0, tension
-    )
-    pairs = same_layer_pairs(geometry, gaps)
-    state = problem.model.same_layer_history()  # in the pairs' order
-    x = geometry.points + problem.model.node_values()[:, :3]
-    middle = np.abs(geometry.points[pairs.a, 2] - 0.075) < 0.025
-    dr = np.mean(np.linalg.norm(x[pairs.a[middle], :2], axis=1)) - cable.layers[1].radius
-    strain = setup.state().end_displacement / geometry.length
-    return state["gap"][middle], state["force"][middle], pairs.gap[middle], dr, strain
-
-
-def test_open_neighbours_approach_as_the_tensioned_layer_tightens_in_large_sliding():
-    """``test_same_layer``'s open layer (nominal gaps of 6.3 µm) in large sliding: the pairs stay
-    open, and their gaps change by the clearance of the deformed helix,
-    D(r + Δr, ω/(1 + ε)) − D(r, ω), within 5 % (small sliding: 3.5 %)."""
-    cable = _seven_wire(3.30e-3)
-    layer = cable.layers[1]
-    gap, force, gap0, dr, strain = _tensioned(cable, "nominal")
-    assert dr < 0 and strain > 0 and np.all(force == 0)
-    r = layer.radius + dr
-    omega = np.tan(layer.alpha) / layer.radius / (1 + strain)
-    deformed = replace(layer, radius=r, lay_angle=np.degrees(np.arctan(omega * r)))
-    change = helix_clearance(deformed) - helix_clearance(layer)
-    np.testing.assert_allclose(gap - gap0, change, rtol=0.05)
-
-
-def test_touching_neighbours_jam_as_the_tensioned_layer_tightens_in_large_sliding():
-    """``test_same_layer``'s touching layer in large sliding: every pair pressed, and "packed"
-    and "nominal" (both closed: the helices would overlap) give the same."""
-    cable = _seven_wire(3.34e-3)
-    results = {gaps: _tensioned(cable, gaps) for gaps in ("packed", "nominal")}
-    gap, force, gap0, dr, _ = results["packed"]
-    assert np.all(gap0 == 0) and dr < 0
-    assert np.all(force > 0) and np.all(gap < 0)
-    np.testing.assert_allclose(results["nominal"][1], force, rtol=1e-9)
 
 
 def _packed_seven_wire(model: str, h_max: float, lateral: float = 0.0):

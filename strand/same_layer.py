@@ -8,7 +8,8 @@ layers 2–4 +62.0, +78.2, +65.6 µm (``tests/test_same_layer.py`` asserts them)
 
 Each node of wire j (in order of phase) faces the point of wire j+1's polyline nearest to it; the
 pair is a ``contact.segment.SegmentGroup`` pair [a, b₀, b₁] with that point's weight ξ, the
-normal from a to it, the Hertz line law over the node's tributary length of wire (with a C¹
+centre-to-centre normal across the neighbour's chord (``neighbour``: the pair's gap does not
+change under rigid rotations, which the frozen normal closes by d ω²/2), the Hertz line law over the node's tributary length of wire (with a C¹
 onset, ``contact.laws.SmoothOnset``: these pairs start touching without load), and Mindlin's
 friction with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
 
@@ -214,6 +215,7 @@ def same_layer_groups(
         SegmentGroup(
             input_to_block[pairs.stencils[rows]], pairs.weight[rows], radius, radius,
             pairs.normal[rows], law, friction, initial_gap=pairs.gap[rows], index=rows,
+            normal="neighbour", initial_positions=geometry.points[pairs.stencils[rows]],
         )
     ]  # fmt: skip
 

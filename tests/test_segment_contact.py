@@ -6,17 +6,25 @@ import pytest
 from strand.contact.hertz import compliance, mindlin_ratio
 from strand.contact.kinematics import rotation_matrix
 from strand.contact.laws import ElasticSlip, HertzLineLaw, Mindlin, PenaltyLaw
-from strand.contact.segment import SegmentGroup
+from strand.contact.segment import SEGMENT_NORMALS, SegmentGroup
 from strand_cases import check_state_and_tangent
 
 R = 1.66e-3  # m, wire radius
 
 
-def side_by_side(n_pairs=3, compliance_kind="hertz", gap=None, mu=0.5, seed=3):
-    """Node a of one wire against segment (b0, b1) of its neighbour, normal along +y."""
+def side_by_side(n_pairs=3, compliance_kind="hertz", gap=None, mu=0.5, seed=3, normal="neighbour"):
+    """Node a of one wire against segment (b0, b1) of its neighbour, a distance 2R (+ gap) apart
+    along a normal near +y, the segment 4 mm long along z."""
     rng = np.random.default_rng(seed)
     xi = rng.uniform(0.1, 0.9, n_pairs)
-    normal = np.tile([0.0, 1.0, 0.0], (n_pairs, 1)) + rng.normal(scale=0.05, size=(n_pairs, 3))
+    n = np.tile([0.0, 1.0, 0.0], (n_pairs, 1)) + rng.normal(scale=0.05, size=(n_pairs, 3))
+    n[:, 2] = 0.0
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    g = np.zeros(n_pairs) if gap is None else np.broadcast_to(gap, (n_pairs,))
+    xa = rng.normal(scale=1e-3, size=(n_pairs, 3))
+    facing = xa + (2 * R + g)[:, None] * n
+    ez = np.array([0.0, 0.0, 4e-3])
+    X = np.stack([xa, facing - xi[:, None] * ez, facing + (1 - xi)[:, None] * ez], axis=1)
     stencils = np.arange(3 * n_pairs).reshape(n_pairs, 3)
     r = np.full(n_pairs, R)
     if compliance_kind == "hertz":
@@ -25,7 +33,9 @@ def side_by_side(n_pairs=3, compliance_kind="hertz", gap=None, mu=0.5, seed=3):
         friction = Mindlin(np.full(n_pairs, mu), mindlin_ratio(65e9, 0.33, 65e9, 0.33))
     else:
         law, friction = PenaltyLaw(np.full(n_pairs, 5e7)), ElasticSlip(np.full(n_pairs, mu), 5e-6)
-    group = SegmentGroup(stencils, xi, r, r, normal, law, friction, initial_gap=gap)
+    group = SegmentGroup(stencils, xi, r, r, n, law, friction, initial_gap=gap, normal=normal,
+                         initial_positions=X)  # fmt: skip
+    group.X_nodes = X.reshape(-1, 3)  # the nodes' positions, in stencil order
     return group, xi
 
 
@@ -38,11 +48,12 @@ def _press(group, xi, approach):
     return w
 
 
+@pytest.mark.parametrize("normal", SEGMENT_NORMALS)
 @pytest.mark.parametrize("kind", ["hertz", "penalty"])
-def test_tangent_matches_finite_differences_open_stick_slip(kind):
+def test_tangent_matches_finite_differences_open_stick_slip(kind, normal):
     """Residual derivatives in the three states, after a committed step with random rotations."""
     rng = np.random.default_rng(11)
-    group, xi = side_by_side(compliance_kind=kind)
+    group, xi = side_by_side(compliance_kind=kind, normal=normal)
     P = len(group)
     w = _press(group, xi, 3e-6)
     w[:, 3:] = rng.normal(scale=0.02, size=(3 * P, 3))
@@ -62,31 +73,59 @@ def test_tangent_matches_finite_differences_open_stick_slip(kind):
         assert np.abs(K - K_fd).max() <= 2e-6 * scale, state
 
 
-def test_rigid_rotation_neither_opens_nor_slips():
-    """Rotate the pair (touching, surface points a distance r_a + r_b apart) rigidly about the
-    contact point by ω: the gap and the slip change by O(ω²) only."""
-    group, xi = side_by_side(n_pairs=1, gap=0.0)
-    n = group.n0[0]
-    xa = np.zeros(3)
-    x0, x1 = xa + 2 * R * n - [0.0, 0.0, 2e-3], xa + 2 * R * n + [0.0, 0.0, 2e-3]
-    xi0 = xi[0]
-    x0, x1 = x0 - (xi0 - 0.5) * (x1 - x0), x1 - (xi0 - 0.5) * (x1 - x0)  # b faces a at ξ
-    X = np.array([xa, x0, x1])
-    centre = xa + R * n
+def _rigid(X: np.ndarray, theta: np.ndarray, centre: np.ndarray) -> np.ndarray:
+    """Unknowns (N, 6) turning the points X (N, 3) rigidly by the rotation vector θ about
+    ``centre``."""
+    w = np.zeros((len(X), 6))
+    w[:, :3] = (X - centre) @ rotation_matrix(theta).T + centre - X
+    w[:, 3:] = theta
+    return w
+
+
+@pytest.mark.parametrize("normal", SEGMENT_NORMALS)
+def test_small_rigid_rotation_neither_opens_nor_slips(normal):
+    """Rotate the pair (touching, surface points r_a + r_b apart) rigidly about the contact
+    point by ω: the gap and the slip change by O(ω²) only."""
+    group, xi = side_by_side(n_pairs=1, gap=0.0, normal=normal)
+    X = group.X_nodes
+    centre = X[0] + R * group.n0[0]
     for omega in (1e-4, 2e-4):
-        theta = omega * np.array([0.3, -0.5, 0.8])
-        Q = rotation_matrix(theta)
-        w = np.zeros((3, 6))
-        w[:, :3] = (X - centre) @ Q.T + centre - X
-        w[:, 3:] = theta
+        w = _rigid(X, omega * np.array([0.3, -0.5, 0.8]), centre)
         group.evaluate(np.zeros((3, 6)), False)
         group.commit()
         group.evaluate(w, False)
-        S, dq = group._S, w.reshape(1, 18)
+        S, dq = group.slip_operator(), w.reshape(1, 18)
         slip = np.einsum("pij,pj->pi", S, dq)
         assert abs(group.state.gap[0]) < 4 * (2 * R) * omega**2
         assert np.linalg.norm(slip) < 4 * (2 * R) * omega**2
         group.rollback()
+
+
+def test_a_finite_rigid_rotation_leaves_the_neighbour_gap_and_turns_the_force():
+    """Pairs pressed 2 µm, then turned rigidly by 0.25 rad (the end sections of the uniform
+    bending test at κ = 0.5 1/m on 1 m): the neighbour normal keeps every gap and force and
+    turns the force with the pair, to round-off; the frozen normal closes them by
+    (r_a + r_b)(1 − cos ω⊥) ≈ 0.1 mm."""
+    theta = 0.25 * np.array([1.0, 0.0, 0.0])  # about x: across the normals (near +y)
+    Q = rotation_matrix(theta)
+    for normal in SEGMENT_NORMALS:
+        group, xi = side_by_side(n_pairs=4, normal=normal)
+        pressed = _press(group, xi, 2e-6)
+        group.evaluate(pressed, False)
+        gap, force, n = group.state.gap.copy(), group.state.force.copy(), group.state.normal.copy()
+        X = group.X_nodes + pressed[:, :3]
+        w = _rigid(X, theta, np.zeros(3))
+        w[:, :3] += pressed[:, :3]
+        group.evaluate(w, False)
+        if normal == "neighbour":
+            np.testing.assert_allclose(group.state.gap, gap, atol=1e-15)
+            np.testing.assert_allclose(group.state.force, force, rtol=1e-9)
+            np.testing.assert_allclose(group.state.normal, n @ Q.T, atol=1e-12)
+        else:
+            closing = gap - group.state.gap
+            omega_across = np.linalg.norm(np.cross(theta, group.n0), axis=1)
+            np.testing.assert_allclose(closing, 2 * R * (1 - np.cos(omega_across)), rtol=0.02)
+            assert np.all(closing > 9e-5)
 
 
 def test_a_given_gap_opens_then_closes():

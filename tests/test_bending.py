@@ -79,7 +79,9 @@ def test_the_moment_is_uniform_and_equals_the_end_couples(same_layer):
         assert np.ptp(zb.section_moments) < 5e-3 * M, zb
         assert zb.moment_end_reaction_0 == pytest.approx(M, rel=3e-3)
         assert zb.moment_end_reaction_L == pytest.approx(M, rel=3e-3)
-        assert zb.axial_force == pytest.approx(10e3, rel=1e-6)
+        # same-layer pairs straddling a cut carry part of the tension across it, which the
+        # wires' section forces leave out: 3.2e-4 of it here (packed)
+        assert zb.axial_force == pytest.approx(10e3, rel=1e-6 if same_layer == "off" else 5e-4)
     assert slipping > 0.1  # the last state really slips
 
 

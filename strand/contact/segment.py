@@ -110,7 +110,6 @@ class SegmentGroup(PairGroup):
             raise ValueError("segment weights must lie in [0, 1]")
         self.normal_kind = normal
         self.n0 = n0
-        self.xi = xi
         #: (P, 3): the weights of a, b₀, b₁ in x_b − x_a
         self.c = np.column_stack([-np.ones(n_pairs), 1 - xi, xi])
         self.r_a = np.asarray(radius_a, dtype=float).reshape(n_pairs)
@@ -164,14 +163,16 @@ class SegmentGroup(PairGroup):
         gradient[:, translations] = np.einsum("pzy,pz->py", A, grad_z)
 
         def add_hessian(K: Array, scale: Array) -> None:
-            # ∂²g/∂z² by the complex step, then Aᵀ (∂²g/∂z²) A on the translations
-            H = np.empty((len(W), 6, 6))
+            # ∂²g/∂z² by the complex step, then Aᵀ (∂²g/∂z²) A on the translations, for the
+            # pairs that carry a force (scale ≠ 0): the open ones add nothing
+            s = np.flatnonzero(scale)
+            H = np.empty((len(s), 6, 6))
             for j in range(6):
                 dz = np.zeros(6, dtype=complex)
                 dz[j] = 1j * _EPS
-                H[:, :, j] = _projected_gap(d + dz[:3], c + dz[3:])[2].imag / _EPS
-            H_y = np.einsum("pzy,pzw,pwv->pyv", A, H, A)
-            K[np.ix_(np.arange(len(W)), translations, translations)] += scale[:, None, None] * H_y
+                H[:, :, j] = _projected_gap(d[s] + dz[:3], c[s] + dz[3:])[2].imag / _EPS
+            H_y = np.einsum("pzy,pzw,pwv->pyv", A[s], H, A[s])
+            K[np.ix_(s, translations, translations)] += scale[s, None, None] * H_y
 
         return PairKinematics(value - self.g0, n, gradient, add_hessian, slip)
 

@@ -2,14 +2,19 @@
 
 Run: .venv/bin/python benchmarks/newton_levers.py TENSIONED_H5 [variant …]
 (TENSIONED_H5: ``tensioned.h5`` of a run of the default case, ``strand run cardinal``; variants:
-newton (default), lag2, amf; none named: all, one after the other in this process)
+newton (default), lag2, amf, reuse_lu, lbfgs; none named: all, one after the other in this
+process)
 
 From the tensioned state, the first four steps of leg 1 (250, 437.5, 578.125, 718.75 N: the
 default case's own) are solved from the converged state before each, with the case's Newton
 settings, and each variant's Newton iterations, Jacobian evaluations (= LU factorisations) and
 residual histories are printed. ``lag2`` lags the Jacobian by 2 (``snes_lag_jacobian``) with the
 stall test off and 30 iterations allowed (a lagged iteration does not halve the residual);
-``amf`` factorises with MUMPS's AMF ordering.
+``amf`` factorises with MUMPS's AMF ordering. ``reuse_lu`` and ``lbfgs`` are ``[steps] iteration``'s
+cheaper iterations (GMRES on each Jacobian with an earlier LU; L-BFGS on each solve's first LU),
+each falling back to Newton on a failed solve. Per step: LU factorisations, MUMPS solves (one per
+GMRES iteration; a pair of triangular solves each) and wall time; then each variant's totals
+and the time of one LU and of one solve (PETSc's log: MatLUFactorNum, MatSolve).
 """
 
 import strand  # noqa: F401
@@ -30,6 +35,8 @@ VARIANTS = {
     "newton": ([], {}),
     "lag2": (["steps.stall=false", "steps.max_iterations=30"], {"snes_lag_jacobian": 2}),
     "amf": ([], {"mat_mumps_icntl_7": 2}),
+    "reuse_lu": (['steps.iteration="reuse_lu"'], {}),
+    "lbfgs": (['steps.iteration="lbfgs"'], {}),
 }
 
 
@@ -44,24 +51,44 @@ def run(path: str, name: str) -> None:
     restore(problem, read_checkpoint(path))
     history: list[float] = []
     s.monitor = lambda i, r: history.append(r)
+    lu, solve = PETSc.Log.Event("MatLUFactorNum"), PETSc.Log.Event("MatSolve")
+    totals = {"its": 0, "lus": 0, "solves": 0, "s": 0.0}
+    lu0, solve0 = lu.getPerfInfo(), solve.getPerfInfo()
     for P in LOADS:
         problem.setup.set_lateral(P)
         history.clear()
-        calls = s.timings["jacobian_calls"]
+        solves = solve.getPerfInfo()["count"]
         t0 = time.perf_counter()
         result = s.solve()
-        print(f"| {name} | {P:g} | {result.converged} | {result.iterations} | "
-              f"{s.timings['jacobian_calls'] - calls} | {time.perf_counter() - t0:.1f} | "
+        seconds = time.perf_counter() - t0
+        solves = solve.getPerfInfo()["count"] - solves
+        totals["its"] += result.iterations
+        totals["lus"] += result.factorisations
+        totals["solves"] += solves
+        totals["s"] += seconds
+        print(f"| {name} | {P:g} | {result.converged}{' (fell back)' if result.fallback else ''} "
+              f"| {result.iterations} | {result.factorisations} | {solves} | {seconds:.1f} | "
               + " ".join(f"{r:.1e}" for r in history) + " |", flush=True)  # fmt: skip
         if not result.converged:
             break
         s.commit()
+    lu1, solve1 = lu.getPerfInfo(), solve.getPerfInfo()
+    per_lu = (lu1["time"] - lu0["time"]) / max(lu1["count"] - lu0["count"], 1)
+    per_solve = (solve1["time"] - solve0["time"]) / max(solve1["count"] - solve0["count"], 1)
+    print(
+        f"| {name}: all steps | | | {totals['its']} | {totals['lus']} | {totals['solves']} | "
+        f"{totals['s']:.1f} | one LU {per_lu:.2f} s, one solve {per_solve:.3f} s |",
+        flush=True,
+    )
     s.destroy()
 
 
 if __name__ == "__main__":
     names = sys.argv[2:] or list(VARIANTS)
-    print("| variant | lateral (N) | converged | iterations | LUs | s | residual norms (N) |")
-    print("|---|---|---|---|---|---|---|")
+    PETSc.Log.begin()
+    print(
+        "| variant | lateral (N) | converged | iterations | LUs | solves | s | residual norms (N) |"
+    )
+    print("|---|---|---|---|---|---|---|---|")
     for name in names:
         run(sys.argv[1], name)

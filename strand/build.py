@@ -77,6 +77,7 @@ def newton_options(case: Case) -> NewtonOptions:
     return NewtonOptions(
         atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
         stall_after=STALL_AFTER if s.stall else 0, linesearch=s.line_search,
+        iteration=s.iteration,
     )  # fmt: skip
 
 

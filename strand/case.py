@@ -53,6 +53,9 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     control = "growth"        # growth: ×growth after easy solves | error: from the predictor's
     error_tolerance = 1e-6    #   miss (m) aimed at by each step
     retry = false             # retry a failed step once with the other predictor, then halve
+    iteration = "newton"      # newton: an LU per iteration | reuse_lu: GMRES on each Jacobian with
+                              #   an earlier one's LU | lbfgs: L-BFGS on a solve's first LU;
+                              #   either falls back to Newton when it fails (docs/theory.md §6)
     cuts = 6                  # halvings allowed before a step is declared failed
     max_iterations = 12       # Newton iterations per attempt
     stall = true              # cut an attempt whose residual has not halved in two iterations

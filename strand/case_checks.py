@@ -17,6 +17,7 @@ from .cable import Cable
 from .case import LINE_SEARCHES, STEP_CONTROLS, Case, CaseError
 from .fatigue.sn import SN_CURVES
 from .settings import FatigueSettings
+from .solver.convergence import ITERATIONS
 
 __all__ = ["checked_case"]
 
@@ -42,6 +43,10 @@ def _check_steps_and_load(case: Case) -> None:
     if steps.control not in STEP_CONTROLS:
         raise CaseError(
             f"[steps] control = {steps.control!r}: expected one of {list(STEP_CONTROLS)}"
+        )
+    if steps.iteration not in ITERATIONS:
+        raise CaseError(
+            f"[steps] iteration = {steps.iteration!r}: expected one of {list(ITERATIONS)}"
         )
     for kind in kinds.registered():  # every kind's own settings, whichever the case's
         kind.check_settings(load.by_kind[kind.name], steps.by_kind[kind.name])

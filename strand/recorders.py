@@ -55,6 +55,7 @@ class RunStep:
     residual: float
     state: Any
     failed_iterations: int = 0
+    factorisations: int = 0
 
 
 @dataclass(frozen=True)
@@ -147,7 +148,8 @@ class StepTable(_CsvFile):
     """``steps.csv``: one row per converged step: number, stage, programme time (the time of
     the field series), the set-up's state, with a ``gauge`` (``reactions.ReactionGauge``) the
     strand's reactions at both ends (``EndReactions``, also kept in ``reactions`` by step
-    number), Newton's iterations and cuts, wall time (s) and final residual norm (N)."""
+    number), Newton's iterations, cuts and LU factorisations, wall time (s) and final residual
+    norm (N)."""
 
     def __init__(self, folder: Path, state_type, gauge=None):
         from .reactions import EndReactions
@@ -158,7 +160,7 @@ class StepTable(_CsvFile):
         super().__init__(
             Path(folder) / "steps.csv",
             ["step", "stage", "time", *columns(state_type), *measured, "iterations", "cuts",
-             "failed_iterations", "seconds", "residual_N"],
+             "failed_iterations", "factorisations", "seconds", "residual_N"],
         )  # fmt: skip
 
     def record(self, ctx: StepContext) -> None:
@@ -169,7 +171,7 @@ class StepTable(_CsvFile):
             measured = values(self.reactions[s.number])
         self.writer.writerow(
             [s.number, s.stage, f"{s.time:.12g}", *values(s.state), *measured, s.iterations,
-             s.cuts, s.failed_iterations, s.seconds, s.residual]
+             s.cuts, s.failed_iterations, s.factorisations, s.seconds, s.residual]
         )  # fmt: skip
         self.file.flush()
 

@@ -168,6 +168,7 @@ class Recording:
             number, rec.stage, stage.parameter, value,
             self.programme.time(position.stage, value), rec.iterations, rec.cuts, rec.seconds,
             rec.residuals[-1] if rec.residuals else 0.0, setup.state(), rec.failed_iterations,
+            rec.factorisations,
         )  # fmt: skip
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14

@@ -95,6 +95,7 @@ class StepSettings(WithKinds):
     control: str = "growth"  # "growth" after easy solves, or "error": the predictor's miss
     error_tolerance: float = 1e-6  # m, "error" control: the step's miss aimed at (ErrorControl)
     retry: bool = False  # retry a failed step once with the other predictor before halving
+    iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
 
 

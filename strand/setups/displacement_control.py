@@ -105,7 +105,7 @@ class DisplacementControl:
         load = _first_load(self._path, target, slope)
         states = [(*self._path[-1], self._w0)]  # the step's converged (load, δ, unknowns)
         predictor = (load, w.copy())
-        iterations, seconds, d = 0, 0.0, states[0][1]
+        iterations, seconds, lus, d = 0, 0.0, 0, states[0][1]
         for n in range(1, self.max_solves + 1):
             self.set_load(load)
             if n > 1:
@@ -113,6 +113,7 @@ class DisplacementControl:
                 w[:] = _along(anchors if len(anchors) > 1 else [*anchors, predictor], load)
             result = self.solver.solve()
             iterations, seconds = iterations + result.iterations, seconds + result.seconds
+            lus += result.factorisations
             if not result.converged:
                 if self.solver.stop_requested():
                     break
@@ -122,12 +123,12 @@ class DisplacementControl:
             d = self.measure()
             if abs(d - target) <= self.tolerance:
                 self._trial, self.solves = (load, d), n
-                return NewtonResult(True, iterations, result.reason, result.residuals, seconds)
+                return NewtonResult(True, iterations, result.reason, result.residuals, seconds, lus)
             states.append((load, d, w.copy()))
             load = _next_load([(p, d) for p, d, _ in states], target, slope)
         reason = (f"displacement control: {abs(d - target):.3g} m short of the prescribed "
                   f"displacement after {n} solves (the last: {result.reason})")  # fmt: skip
-        return NewtonResult(False, iterations, reason, result.residuals, seconds)
+        return NewtonResult(False, iterations, reason, result.residuals, seconds, lus)
 
 
 def _along(anchors: list, load: float):

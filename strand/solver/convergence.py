@@ -10,7 +10,10 @@ import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
 
-__all__ = ["NewtonOptions", "NewtonResult", "NewtonConvergence", "STALL_AFTER"]
+__all__ = ["NewtonOptions", "NewtonResult", "NewtonConvergence", "STALL_AFTER", "ITERATIONS"]
+
+#: ``NewtonOptions.iteration``: Newton, GMRES on a reused LU, L-BFGS
+ITERATIONS = ("newton", "reuse_lu", "lbfgs")
 
 #: the stall test's start in strand's own runs (``[steps] stall``, ``strand.StrandProblem``):
 #: the 4th iteration (``NewtonOptions.stall_after``)
@@ -56,14 +59,34 @@ class NewtonOptions:
     #: (``[steps] line_search``), which breaks the 2-cycles of slipping contact pairs
     #: (docs/theory.md §6)
     linesearch: str = "basic"
+    #: how each iteration's linear system is solved (``ITERATIONS``): ``newton``, a MUMPS LU of
+    #: every Jacobian; ``reuse_lu``, GMRES on every Jacobian preconditioned by the LU of an
+    #: earlier one, kept across iterations and load steps and factorised afresh when GMRES took
+    #: ``krylov_max`` iterations or failed, or after ``lu_reuse`` Jacobians; ``lbfgs``, PETSc's
+    #: L-BFGS with the LU of each solve's first Jacobian as its initial inverse (no stall
+    #: test: its residual falls slowly and unevenly). A solve of either that fails is solved
+    #: again from its start by Newton (``NewtonResult.fallback``).
+    iteration: str = "newton"
+    #: ``reuse_lu``: the Jacobians one LU serves at most
+    lu_reuse: int = 50
+    #: ``reuse_lu``: GMRES's iterations at most; a solve that needs them all stales the LU
+    krylov_max: int = 30
+    #: ``reuse_lu``: GMRES's tolerance on the residual of the Newton system, relative to the
+    #: nonlinear residual: an inexact Newton direction this close keeps Newton's iterates
+    krylov_rtol: float = 1e-4
     petsc: dict = field(
         default_factory=dict
     )  # extra PETSc options, e.g. {"mat_mumps_icntl_14": 80}
 
+    def __post_init__(self):
+        if self.iteration not in ITERATIONS:
+            raise ValueError(f"iteration = {self.iteration!r}: expected one of {ITERATIONS}")
+
     def petsc_options(self) -> dict:
         """The SNES, KSP and PC options these settings stand for (Newton with a line search,
-        MUMPS LU), then the extra ``petsc`` ones, without the options prefix."""
-        return {
+        MUMPS LU; GMRES for ``reuse_lu``, L-BFGS for ``lbfgs``), then the extra ``petsc`` ones,
+        without the options prefix."""
+        options = {
             "snes_type": "newtonls",
             "snes_linesearch_type": self.linesearch,
             "snes_atol": self.atol,
@@ -74,8 +97,27 @@ class NewtonOptions:
             "ksp_type": "preonly",
             "pc_type": "lu",
             "pc_factor_mat_solver_type": "mumps",
-            **self.petsc,
         }
+        if self.iteration == "reuse_lu":
+            options |= {
+                "ksp_type": "gmres",
+                "ksp_pc_side": "right",  # GMRES minimises the Newton system's own residual
+                "ksp_gmres_restart": self.krylov_max,
+                "ksp_max_it": self.krylov_max,
+                "ksp_rtol": self.krylov_rtol,
+                # a GMRES that stops short still gives a direction; the next Jacobian is
+                # factorised afresh
+                "snes_max_linear_solve_fail": self.max_it + 1,
+            }
+        elif self.iteration == "lbfgs":
+            options |= {
+                "snes_type": "qn",
+                "snes_qn_type": "lbfgs",
+                "snes_qn_scale_type": "jacobian",
+                "snes_qn_restart_type": "none",
+                "snes_linesearch_type": "cp",
+            }
+        return options | self.petsc
 
 
 @dataclass
@@ -89,6 +131,11 @@ class NewtonResult:
     reason: str
     residuals: list[float]
     seconds: float
+    #: LU factorisations in this solve
+    factorisations: int = 0
+    #: the cheaper iteration (``NewtonOptions.iteration``) failed and Newton solved it again
+    #: from the start; ``iterations`` and ``factorisations`` count both
+    fallback: bool = False
 
     @property
     def residual(self) -> float:
@@ -121,6 +168,9 @@ class NewtonConvergence:
         self.residuals: list[float] = []
         #: whether the stall test stopped it
         self.stalled = False
+        #: whether the stall test applies (not to L-BFGS, whose residual falls slowly and
+        #: unevenly: ``NonlinearProblem`` turns it off for ``iteration = "lbfgs"``)
+        self.stall_test = True
 
     def reset(self) -> None:
         """Start a new solve."""
@@ -148,7 +198,8 @@ class NewtonConvergence:
             if snorm < o.stol * xnorm:
                 return reason.CONVERGED_SNORM_RELATIVE
             if (
-                0 < (o.stall_after or 0) <= its
+                self.stall_test
+                and 0 < (o.stall_after or 0) <= its
                 and fnorm > o.stall_factor * r[its - 2]
                 and fnorm > o.floor_factor * max(o.atol, o.rtol * r[0])
             ):

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
+from contextlib import contextmanager
 
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
@@ -95,6 +96,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._b = fem_petsc.create_vector(V)
         self._x = fem_petsc.create_vector(V)
         self._convergence = NewtonConvergence(self.options, self._b, V.mesh.comm)
+        self._convergence.stall_test = self.options.iteration != "lbfgs"
 
         self._petsc_options_prefix = petsc_options_prefix
         self._snes = PETSc.SNES().create(V.mesh.comm)
@@ -108,7 +110,14 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         for name, v in zip(self._option_names, settings.values(), strict=True):
             opts[name] = v
         self._snes.setFunction(self._residual, self._b)
-        self._snes.setJacobian(self._jacobian, self._A, self._A)
+        # ``reuse_lu`` factorises a matrix of its own, a copy of the Jacobian taken when the LU
+        # is renewed: MUMPS factorises again only when that copy changes (PCSetUp compares its
+        # state), while GMRES works on the current Jacobian
+        self._P = self._A.duplicate() if self.options.iteration == "reuse_lu" else self._A
+        self._lu_age = 0  # Jacobians since the LU was renewed (``reuse_lu``)
+        self._newton_only = False  # the fall-back solve: a fresh LU at every iteration
+        self._factorisations = 0
+        self._snes.setJacobian(self._jacobian, self._A, self._P)
         self._snes.setMonitor(self._monitor)
         self._snes.setConvergenceTest(self._convergence)
         self._snes.setFromOptions()
@@ -170,9 +179,29 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         t2 = time.perf_counter()
         self._pairs.add_tangents(J, terms)
         J.assemble()
+        if self._P is self._A:  # a fresh LU of every Jacobian
+            self._factorisations += 1
+        elif self._renew_lu(snes):
+            J.copy(P, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+            self._factorisations += 1
         t3 = time.perf_counter()
         self.timings["insert"] += t3 - t2
         self.timings["jacobian"] += t3 - t0
+
+    def _renew_lu(self, snes) -> bool:
+        """``reuse_lu``: whether this Jacobian's LU replaces the one kept: in the fall-back
+        solve, before the first factorisation, after ``lu_reuse`` Jacobians, and when the last
+        GMRES solve failed or needed all its ``krylov_max`` iterations (the LU went stale)."""
+        o = self.options
+        ksp = snes.getKSP()
+        stale = self._lu_age > 0 and (
+            ksp.getConvergedReason() < 0 or ksp.getIterationNumber() >= o.krylov_max
+        )
+        if self._newton_only or self._factorisations == 0 or stale or self._lu_age >= o.lu_reuse:
+            self._lu_age = 0
+            return True
+        self._lu_age += 1
+        return False
 
     def _monitor(self, snes, its, norm):
         self._convergence.record(norm)
@@ -181,10 +210,45 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
 
     # -- solving ---------------------------------------------------------------------------------
     def solve(self) -> NewtonResult:
-        """Run Newton from the current ``u``. On failure ``u`` holds the last iterate."""
+        """Run Newton from the current ``u``. On failure ``u`` holds the last iterate. With a
+        cheaper iteration than Newton's (``NewtonOptions.iteration``), a failed solve is solved
+        again by Newton from the same start."""
+        start = self._u.x.array.copy()
+        first = self._solve_once()
+        newton = self.options.iteration == "newton" or self._newton_only
+        if first.converged or newton or self.stop_requested():
+            return first
+        self._u.x.array[:] = start
+        with self._newton():
+            second = self._solve_once()
+        return NewtonResult(
+            second.converged, first.iterations + second.iterations, second.reason,
+            second.residuals, first.seconds + second.seconds,
+            first.factorisations + second.factorisations, fallback=True,
+        )  # fmt: skip
+
+    @contextmanager
+    def _newton(self):
+        """Inside, this problem's SNES runs Newton: a fresh LU at every iteration."""
+        lbfgs = self.options.iteration == "lbfgs"
+        self._newton_only = True
+        if lbfgs:
+            self._snes.setType("newtonls")
+            self._snes.getLineSearch().setType(self.options.linesearch)
+            self._convergence.stall_test = True
+        try:
+            yield
+        finally:
+            self._newton_only = False
+            if lbfgs:
+                self._snes.setFromOptions()  # back to the options' L-BFGS
+                self._convergence.stall_test = False
+
+    def _solve_once(self) -> NewtonResult:
         self._convergence.reset()
         self._pairs.forget()
         self._kept_residual = None
+        factorisations = self._factorisations
         t0 = time.perf_counter()
         fem_petsc.assign(self._u, self._x)
         self._snes.solve(None, self._x)
@@ -204,6 +268,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
             self._convergence.reason_name(reason),
             list(self._convergence.residuals),
             dt,
+            self._factorisations - factorisations,
         )
 
     def _all_finite(self) -> bool:
@@ -263,6 +328,8 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._remove_options()
         for obj in (self._snes, self._A, self._b, self._x):
             obj.destroy()
+        if self._P is not self._A:
+            self._P.destroy()
 
     def _remove_options(self) -> None:
         opts = PETSc.Options()

@@ -62,6 +62,8 @@ class StepRecord:
     retries: int = 0
     #: converged attempts rejected for a miss over ``ErrorControl.reject_factor`` × tol
     rejections: int = 0
+    #: LU factorisations of the step, failed attempts included (``NewtonResult.factorisations``)
+    factorisations: int = 0
 
 
 @dataclass(frozen=True)
@@ -200,8 +202,8 @@ class LoadStepper:
         sign = 1.0 if end >= start else -1.0
         current = start
         step = min(self.step, self.max_step)
-        # since the last success: step cuts, their Newton iterations, retries, rejections
-        cuts, failed, retries, rejections = 0, 0, 0, 0
+        # since the last success: step cuts, their Newton iterations, retries, rejections, LUs
+        cuts, failed, retries, rejections, lus = 0, 0, 0, 0, 0
         predict = self.extrapolate  # start the next attempt from the secant predictor
         w = self.solver.w.x.array
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
@@ -219,6 +221,7 @@ class LoadStepper:
             if predict and previous is not None:  # secant predictor along the ramp
                 w += (trial - current) / previous[0] * previous[1]
             result = self.solver.solve()
+            lus += result.factorisations
             if result.converged:
                 h, dw = trial - current, w - start_w
                 error, proposal = self._estimate(h, dw, previous, cuts)
@@ -234,14 +237,14 @@ class LoadStepper:
                 self.solver.commit()
                 rec = StepRecord(
                     stage, trial, result.iterations, result.residuals, result.seconds, cuts,
-                    failed, error, retries, rejections,
+                    failed, error, retries, rejections, lus,
                 )  # fmt: skip
                 current = trial
                 if proposal is not None:
                     step = proposal
                 elif result.iterations <= self.easy_iterations:
                     step = min(step * self.growth, self.max_step)
-                cuts, failed, retries, rejections = 0, 0, 0, 0
+                cuts, failed, retries, rejections, lus = 0, 0, 0, 0, 0
                 predict = self.extrapolate
                 self.state = RampState(step, previous)
                 records.append(rec)

@@ -42,6 +42,9 @@ VARIANTS = {
     "default: cp line search": ([], 1),
     "default on 2 ranks": ([], 2),
     "first tension step 10 kN": (["steps.tension=10e3"], 1),
+    # cheaper iterations (docs/theory.md §6): GMRES on a kept LU, L-BFGS on each solve's first
+    "reuse LU": (['steps.iteration="reuse_lu"'], 1),
+    "L-BFGS": (['steps.iteration="lbfgs"'], 1),
     # not speed settings: how far the results move with the load path (friction remembers it)
     "default, lateral steps x2": (["steps.lateral=500", "steps.lateral_max=800"], 1),
     "default, steps halved": (

@@ -1,10 +1,11 @@
 """Cost against the number of wires: steel spiral strands of 7 to 127 wires on 1 and 2 ranks.
 
 Run: .venv/bin/python benchmarks/wire_count.py [--quick] [--wires 7 19 …] [--ranks 1 2]
-[--length L] [--no-analysis] [--report] [section.key=value …]
+[--length L] [--no-analysis] [--report] [--folder NAME] [section.key=value …]
 (--quick: 7 and 19 wires over 0.06 m, a smoke test of the benchmark itself, in its own folder;
 --report: the table of the runs already made, without running; the settings, as ``strand run
---set``, go to every run, e.g. 'contact.same_layer="off"')
+--set``, go to every run, e.g. 'contact.same_layer="off"'; --folder: the runs' sub-folder, so
+that those of other settings stay apart)
 
 The strands: all-steel spiral strands 1+6, 1+6+12, … , 1+6+12+18+24+30+36 (7, 19, 37, 61, 91,
 127 wires), every wire 3 mm (a mooring spiral strand's wire size), E = 200 GPa, ν = 0.3, every
@@ -399,6 +400,8 @@ def probe_lines(probe: dict) -> list[str]:
 
 def main(args: argparse.Namespace, settings: list[str]) -> None:
     root = ROOT / "quick" if args.quick else ROOT
+    if args.folder:
+        root = root / args.folder
     root.mkdir(parents=True, exist_ok=True)
     sizes = args.wires or (QUICK_SIZES if args.quick else SIZES)
     length = args.length or (QUICK_LENGTH if args.quick else LENGTH)
@@ -460,6 +463,9 @@ if __name__ == "__main__":
                             help="skip the probe of MUMPS's parallel analysis")  # fmt: skip
         parser.add_argument("--report", action="store_true",
                             help="print the table of the runs already in the results folder")  # fmt: skip
+        parser.add_argument("--folder", default="",
+                            help="a folder of its own (under the results folder) for the runs "
+                                 "of these settings, e.g. steps.iteration=\"reuse_lu\"")  # fmt: skip
         args, settings = parser.parse_known_args()
         unknown = [s for s in settings if "=" not in s]
         if unknown:

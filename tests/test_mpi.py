@@ -58,7 +58,7 @@ def assert_same_results(serial: Path, parallel: Path, counts=("iterations", "cut
         scale = np.maximum(np.abs(a).max(axis=0), 1e-300)
         rel = np.abs(a - b) / scale
         if name == "steps.csv":  # Newton effort not asked to agree is no result
-            effort = {"iterations", "failed_iterations", "cuts"} - set(counts)
+            effort = {"iterations", "failed_iterations", "factorisations", "cuts"} - set(counts)
             rel[:, [j for j, col in enumerate(head) if col in effort]] = 0.0
         j = int(np.argmax(rel.max(axis=0)))
         assert rel.max() <= RTOL, f"{name}: column {head[j]} differs by {rel.max():.2e}"
@@ -132,6 +132,20 @@ def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
             "steps.tolerance=1e-7", "--set", "steps.max_iterations=20", "--set",
             "steps.growth=1.0"]  # fmt: skip
     _run_and_compare(seven_wire, ["seven.toml", *same], ranks=(2,), tag="same_layer",
+                     counts=("cuts",))  # fmt: skip
+
+
+@needs_mpirun
+@pytest.mark.slow
+def test_reuse_lu_is_the_same_on_1_and_2_ranks(seven_wire):
+    """GMRES on a kept LU (``[steps] iteration = "reuse_lu"``) on distributed matrices: its
+    directions differ by the ranks' round-off, and so may the GMRES iteration counts that
+    decide when the LU is renewed; on a fixed load path solved to 1e-7 N the results agree
+    all the same (the iteration counts are not compared)."""
+    reuse = ["--set", 'steps.iteration="reuse_lu"', "--set", "steps.balance=0", "--set",
+             "steps.tolerance=1e-7", "--set", "steps.max_iterations=20", "--set",
+             "steps.growth=1.0"]  # fmt: skip
+    _run_and_compare(seven_wire, ["seven.toml", *reuse], ranks=(2,), tag="reuse_lu",
                      counts=("cuts",))  # fmt: skip
 
 

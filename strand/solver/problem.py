@@ -114,7 +114,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         # is renewed: MUMPS factorises again only when that copy changes (PCSetUp compares its
         # state), while GMRES works on the current Jacobian
         self._P = self._A.duplicate() if self.options.iteration == "reuse_lu" else self._A
-        self._lu_age = 0  # Jacobians since the LU was renewed (``reuse_lu``)
+        self._lu_age = 0  # Jacobians the kept LU served (``reuse_lu``); 0: none kept
         self._newton_only = False  # the fall-back solve: a fresh LU at every iteration
         self._factorisations = 0
         self._snes.setJacobian(self._jacobian, self._A, self._P)
@@ -190,15 +190,14 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
 
     def _renew_lu(self, snes) -> bool:
         """``reuse_lu``: whether this Jacobian's LU replaces the one kept: in the fall-back
-        solve, before the first factorisation, after ``lu_reuse`` Jacobians, and when the last
-        GMRES solve failed or needed all its ``krylov_max`` iterations (the LU went stale)."""
+        solve, when none is kept (the first, or after a failed factorisation), once it served
+        ``lu_reuse`` Jacobians, and when the last GMRES solve failed or needed all its
+        ``krylov_max`` iterations (the LU went stale)."""
         o = self.options
         ksp = snes.getKSP()
-        stale = self._lu_age > 0 and (
-            ksp.getConvergedReason() < 0 or ksp.getIterationNumber() >= o.krylov_max
-        )
-        if self._newton_only or self._factorisations == 0 or stale or self._lu_age >= o.lu_reuse:
-            self._lu_age = 0
+        stale = ksp.getConvergedReason() < 0 or ksp.getIterationNumber() >= o.krylov_max
+        if self._newton_only or self._lu_age == 0 or stale or self._lu_age >= o.lu_reuse:
+            self._lu_age = 1
             return True
         self._lu_age += 1
         return False
@@ -218,6 +217,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         newton = self.options.iteration == "newton" or self._newton_only
         if first.converged or newton or self.stop_requested():
             return first
+        self._pairs.rollback()  # the pairs' state too (large sliding's segments) as it was
         self._u.x.array[:] = start
         with self._newton():
             second = self._solve_once()
@@ -229,8 +229,11 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
 
     @contextmanager
     def _newton(self):
-        """Inside, this problem's SNES runs Newton: a fresh LU at every iteration."""
+        """Inside, this problem's SNES runs Newton: a fresh LU at every iteration, and a failed
+        linear solve ends the solve (the settings return from PETSc's options database)."""
         lbfgs = self.options.iteration == "lbfgs"
+        linear_failures = self._snes.getMaxLinearSolveFailures()
+        self._snes.setMaxLinearSolveFailures(1)
         self._newton_only = True
         if lbfgs:
             self._snes.setType("newtonls")
@@ -240,6 +243,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
             yield
         finally:
             self._newton_only = False
+            self._snes.setMaxLinearSolveFailures(linear_failures)
             if lbfgs:
                 self._snes.setFromOptions()  # back to the options' L-BFGS
                 self._convergence.stall_test = False
@@ -255,10 +259,15 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(self._x, self._u)
         reason = self._snes.getConvergedReason()
-        if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE:
+        ksp = self._snes.getKSP()
+        failed_pc = ksp.getPC().getFailedReason() != 0  # reuse_lu goes on past a failed solve
+        if self.V.mesh.comm.size > 1:
+            failed_pc = self.V.mesh.comm.allreduce(failed_pc, op=MPI.LOR)
+        if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE or failed_pc:
             # a failed factorisation leaves the PC failed: without a reset every later solve
             # (after a step cut, from a good state) would fail at once
-            self._snes.getKSP().reset()
+            ksp.reset()
+            self._lu_age = 0  # reuse_lu: the next Jacobian's LU, made and counted
         converged = self._convergence.accepts(reason, self._all_finite)
         dt = time.perf_counter() - t0
         self.timings["solve"] += dt

@@ -255,13 +255,16 @@ class FieldSeries:
 
 class KeyStates:
     """Keeps the cell results and contact pair results of the tensioned state (last step before
-    the cycle), the cell results of the first cycle step, and those of the largest abs(cycle
-    load) reached, with the nodal unknowns there ((N, 6) in the geometry's point order; for
-    summary and figures)."""
+    the cycle) and of the tension's last step (the same state unless a load is then applied and
+    held, as ``tension_cycle``'s saddle load), the cell results of the first cycle step, and
+    those of the largest abs(cycle load) reached, with the nodal unknowns there ((N, 6) in the
+    geometry's point order; for summary and figures)."""
 
     def __init__(self):
         self.tensioned = None
         self.tensioned_pairs = None
+        self.tension_end = None
+        self.tension_end_pairs = None
         self.first_cycle = None
         self.peak = None
         self.peak_w = None
@@ -271,6 +274,8 @@ class KeyStates:
         if not ctx.cycle:
             self.tensioned = ctx.cells
             self.tensioned_pairs = ctx.pairs
+            if ctx.step.parameter == "tension":
+                self.tension_end, self.tension_end_pairs = ctx.cells, ctx.pairs
             return
         if self.first_cycle is None:
             self.first_cycle = ctx.cells

@@ -31,6 +31,9 @@ class RunResult:
     reactions: dict[int, Any] = field(default_factory=dict)
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: PairResults | None = None  # the contact pairs there
+    #: at the tension's last step (``tensioned`` unless a load was then applied and held)
+    tension_end: CellResults | None = None
+    tension_end_pairs: PairResults | None = None  # the contact pairs there
     first_cycle: CellResults | None = None  # at the first step of the cycle
     #: the fatigue report of the run (``fatigue_report.FatigueReport``; None without one)
     fatigue: Any = None

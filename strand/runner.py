@@ -225,6 +225,7 @@ def run_programme_with_outputs(
     keys = recording.key_states
     result.tensioned, result.peak, result.peak_w = keys.tensioned, keys.peak, keys.peak_w
     result.tensioned_pairs, result.first_cycle = keys.tensioned_pairs, keys.first_cycle
+    result.tension_end, result.tension_end_pairs = keys.tension_end, keys.tension_end_pairs
     result.bending, result.slip = recording.bending.rows, recording.slip.rows
     result.reactions = recording.steps_table.reactions
     result.reference = kind_of(case).reference(case, result)

@@ -59,8 +59,9 @@ def effort_line(result: RunResult) -> str:
 
 def tension_lines(case: Case, result: RunResult, geometry) -> list[str]:
     """The last converged tension (the target, or where a failed run stopped) against the fibre
-    model: strain and wire forces per layer over the middle half, and the contact forces."""
-    t = result.tensioned
+    model: strain and wire forces per layer over the middle half, and the contact forces, at the
+    tension's last step (before a load the set-up then holds, such as ``tension_cycle``'s)."""
+    t = result.tension_end
     tension_rows = [s for s in result.steps if s.parameter == "tension"]
     if t is None or not tension_rows:
         return []
@@ -81,7 +82,7 @@ def tension_lines(case: Case, result: RunResult, geometry) -> list[str]:
             f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
         )
     lines.append(wire_stress_line(case.cable, t, L))
-    lines.append(contact_force_line(geometry, result.tensioned_pairs))
+    lines.append(contact_force_line(geometry, result.tension_end_pairs))
     return lines
 
 

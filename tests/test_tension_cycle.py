@@ -172,6 +172,21 @@ def test_a_saddle_load_held_through_the_tension_cycle(held_run):
     assert (min(force), max(force)) == (MEAN - SWING, MEAN + SWING)
 
 
+def _after_tension(run) -> list[str]:
+    """The summary's block on the state after tension: its wire force and contact lines."""
+    lines = (run / "summary.txt").read_text().splitlines()
+    first = next(i for i, line in enumerate(lines) if line.startswith("after tension"))
+    return [line for line in lines[first : first + 12] if "wire force" in line or "contact" in line]
+
+
+def test_the_summary_after_tension_is_before_the_held_saddle_load(cycle_run, held_run):
+    """The summary compares the state at the tension's end with the fibre model: with a saddle
+    load held after the tension, it is the same state as without one (the same tension steps),
+    not the state under the saddle load (whose bending moves the middle half's wire forces)."""
+    plain, held = _after_tension(cycle_run), _after_tension(held_run)
+    assert len(plain) >= 3 and held == plain
+
+
 def test_a_tension_cycle_that_compresses_the_strand_is_refused():
     """One line each: the lowest end force T − swing at or below 0; a held saddle shorter than
     the mesh's elements."""

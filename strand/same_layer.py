@@ -10,8 +10,9 @@ Each node of wire j (in order of phase) faces the point of wire j+1's polyline n
 pair is a ``contact.segment.SegmentGroup`` pair [a, b₀, b₁] with that point's weight ξ, the
 centre-to-centre normal across the neighbour's chord (``neighbour``: the pair's gap does not
 change under rigid rotations, which the frozen normal closes by d ω²/2), the Hertz line law
-over the node's tributary length of wire (with a C¹ onset, ``contact.laws.SmoothOnset``: these pairs start touching without load), and Mindlin's
-friction with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
+over the node's tributary length of wire (with a C¹ onset, ``contact.laws.SmoothOnset``: these
+pairs start touching without load), and Mindlin's friction with the layer's Coulomb
+coefficient. Initial gaps (``[contact] same_layer``):
 
 * ``"nominal"``: every neighbour at the layer's nominal gap, clipped at 0 (a layer whose helices
   would overlap is taken as touching: stranding puts its wires side by side);

@@ -50,10 +50,11 @@ def effort_line(result: RunResult) -> str:
     cuts = sum(s.cuts for s in result.steps)
     lus = sum(s.factorisations for s in result.steps)
     outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
+    per_iteration = result.seconds / max(its + failed, 1)
     return (
         f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in {cuts} "
-        f"failed attempts), {lus} LUs, {result.seconds:.0f} s ({result.seconds / max(its + failed, 1):.2f} s "
-        f"per iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}"
+        f"failed attempts), {lus} LUs, {result.seconds:.0f} s ({per_iteration:.2f} s per "
+        f"iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}"
     )
 
 

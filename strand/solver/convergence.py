@@ -168,8 +168,8 @@ class NewtonConvergence:
         self.residuals: list[float] = []
         #: whether the stall test stopped it
         self.stalled = False
-        #: whether the stall test applies (not to L-BFGS, whose residual falls slowly and
-        #: unevenly: ``NonlinearProblem`` turns it off for ``iteration = "lbfgs"``)
+        #: whether the stall test applies (``NonlinearProblem`` sets it for each solve: not
+        #: to L-BFGS, whose residual falls slowly and unevenly)
         self.stall_test = True
 
     def reset(self) -> None:

@@ -96,7 +96,6 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._b = fem_petsc.create_vector(V)
         self._x = fem_petsc.create_vector(V)
         self._convergence = NewtonConvergence(self.options, self._b, V.mesh.comm)
-        self._convergence.stall_test = self.options.iteration != "lbfgs"
 
         self._petsc_options_prefix = petsc_options_prefix
         self._snes = PETSc.SNES().create(V.mesh.comm)
@@ -212,9 +211,9 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         """Run Newton from the current ``u``. On failure ``u`` holds the last iterate. With a
         cheaper iteration than Newton's (``NewtonOptions.iteration``), a failed solve is solved
         again by Newton from the same start."""
-        start = self._u.x.array.copy()
-        first = self._solve_once()
         newton = self.options.iteration == "newton" or self._newton_only
+        start = None if newton else self._u.x.array.copy()  # for the fall-back
+        first = self._solve_once()
         if first.converged or newton or self.stop_requested():
             return first
         self._pairs.rollback()  # the pairs' state too (large sliding's segments) as it was
@@ -238,7 +237,6 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         if lbfgs:
             self._snes.setType("newtonls")
             self._snes.getLineSearch().setType(self.options.linesearch)
-            self._convergence.stall_test = True
         try:
             yield
         finally:
@@ -246,9 +244,10 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
             self._snes.setMaxLinearSolveFailures(linear_failures)
             if lbfgs:
                 self._snes.setFromOptions()  # back to the options' L-BFGS
-                self._convergence.stall_test = False
 
     def _solve_once(self) -> NewtonResult:
+        # the stall test is Newton's: L-BFGS's residual falls slowly and unevenly
+        self._convergence.stall_test = self._newton_only or self.options.iteration != "lbfgs"
         self._convergence.reset()
         self._pairs.forget()
         self._kept_residual = None

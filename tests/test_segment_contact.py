@@ -6,7 +6,12 @@ import pytest
 from strand.contact.hertz import compliance, mindlin_ratio
 from strand.contact.kinematics import rotation_matrix
 from strand.contact.laws import ElasticSlip, HertzLineLaw, Mindlin, PenaltyLaw
-from strand.contact.segment import SEGMENT_NORMALS, SegmentGroup
+from strand.contact.segment import (
+    SEGMENT_NORMALS,
+    SegmentGroup,
+    _projected_gap,
+    _projected_gap_hessian,
+)
 from strand_cases import check_state_and_tangent
 
 R = 1.66e-3  # m, wire radius
@@ -71,6 +76,37 @@ def test_tangent_matches_finite_differences_open_stick_slip(kind, normal):
         K_fd, scale = check_state_and_tangent(group, w2, state)
         K = group.evaluate(w2, True)[1]
         assert np.abs(K - K_fd).max() <= 2e-6 * scale, state
+
+
+def _complex_step_hessian(d: np.ndarray, c: np.ndarray, eps: float = 1e-30) -> np.ndarray:
+    """Reference ∂²g/∂z² (P, 6, 6) of g = ‖P_c d‖, z = (d, c): H[:, :, j] = Im ∇g(z + iεe_j)/ε
+    (the gradient is complex-analytic; no difference is taken)."""
+    H = np.empty((len(d), 6, 6))
+    for j in range(6):
+        dz = np.zeros(6, dtype=complex)
+        dz[j] = 1j * eps
+        H[:, :, j] = _projected_gap(d + dz[:3], c + dz[3:])[2].imag / eps
+    return H
+
+
+def test_closed_form_neighbour_hessian_matches_the_complex_step():
+    """∂²g/∂z² in closed form against the complex step, on random pairs: ‖d‖ = 2R, ‖c‖ from 1
+    to 4 mm, angles between d and c from 5° to 175° (and d across c)."""
+    rng = np.random.default_rng(5)
+    n_pairs = 200
+    e = rng.normal(size=(n_pairs, 3))
+    e /= np.linalg.norm(e, axis=1)[:, None]
+    m = np.cross(e, rng.normal(size=(n_pairs, 3)))
+    m /= np.linalg.norm(m, axis=1)[:, None]
+    angle = rng.uniform(np.radians(5), np.radians(175), n_pairs)
+    angle[:20] = np.pi / 2
+    d = 2 * R * (np.cos(angle)[:, None] * e + np.sin(angle)[:, None] * m)
+    c = rng.uniform(1e-3, 4e-3, n_pairs)[:, None] * e
+    H = _projected_gap_hessian(d, c)
+    H_ref = _complex_step_hessian(d, c)
+    size = np.abs(H_ref).max(axis=(1, 2))[:, None, None]
+    assert np.all(np.abs(H - H_ref) <= 1e-10 * size)
+    np.testing.assert_array_equal(H, H.transpose(0, 2, 1))
 
 
 def _rigid(X: np.ndarray, theta: np.ndarray, centre: np.ndarray) -> np.ndarray:

@@ -40,8 +40,6 @@ Array = npt.NDArray[np.float64]
 
 #: the normals of a ``SegmentGroup`` (module docstring)
 SEGMENT_NORMALS = ("neighbour", "frozen")
-#: complex step of the Hessian (exact: no difference is taken)
-_EPS = 1e-30
 
 
 def _projected_gap(d: Array, c: Array) -> tuple[Array, Array, Array]:
@@ -49,6 +47,35 @@ def _projected_gap(d: Array, c: Array) -> tuple[Array, Array, Array]:
     n, g_d, g_c = _projected_normal_gradient(d, c)
     value = np.einsum("pi,pi->p", d, n)
     return value, n, np.concatenate([g_d, g_c], axis=1)
+
+
+def _projected_gap_hessian(d: Array, c: Array) -> Array:
+    """∂²g/∂z² (P, 6, 6) of g = ‖P_c d‖ in z = (d, c), in closed form.
+
+    With ℓ = ‖c‖, e = c/ℓ, α = d·c/ℓ², v = P_c d = d − αc, g = ‖v‖, n = v/g and R = I − e⊗e − n⊗n
+    (the projection across both e and n), from ∂g/∂d = n, ∂g/∂c = −αn and ∂n/∂v = (I − n⊗n)/g:
+
+        ∂²g/∂d² = R/g,   ∂²g/∂d∂c = −(α/g) R − e⊗n/ℓ,
+        ∂²g/∂c² = (α²/g) R + (α/ℓ)(n⊗e + e⊗n) − (g/ℓ²) n⊗n.
+    """
+    length = np.sqrt(np.einsum("pi,pi->p", c, c))
+    e = c / length[:, None]
+    alpha = np.einsum("pi,pi->p", d, e) / length
+    v = d - (alpha * length)[:, None] * e
+    g = np.sqrt(np.einsum("pi,pi->p", v, v))
+    n = v / g[:, None]
+    ee = e[:, :, None] * e[:, None, :]
+    nn = n[:, :, None] * n[:, None, :]
+    en = e[:, :, None] * n[:, None, :]
+    R_g = (np.eye(3) - ee - nn) / g[:, None, None]
+    a, a_l = alpha[:, None, None], (alpha / length)[:, None, None]
+    H = np.empty((len(d), 6, 6))
+    H[:, :3, :3] = R_g
+    H[:, :3, 3:] = -a * R_g - en / length[:, None, None]
+    H[:, 3:, :3] = H[:, :3, 3:].transpose(0, 2, 1)
+    H[:, 3:, 3:] = a**2 * R_g + a_l * (en + en.transpose(0, 2, 1))
+    H[:, 3:, 3:] -= (g / length**2)[:, None, None] * nn
+    return H
 
 
 def _z_map(xi: Array) -> Array:
@@ -163,15 +190,11 @@ class SegmentGroup(PairGroup):
         gradient[:, translations] = np.einsum("pzy,pz->py", A, grad_z)
 
         def add_hessian(K: Array, scale: Array) -> None:
-            # ∂²g/∂z² by the complex step, then Aᵀ (∂²g/∂z²) A on the translations, for the
-            # pairs that carry a force (scale ≠ 0): the open ones add nothing
+            # Aᵀ (∂²g/∂z²) A on the translations, for the pairs that carry a force (scale ≠ 0):
+            # the open ones add nothing
             s = np.flatnonzero(scale)
-            H = np.empty((len(s), 6, 6))
-            for j in range(6):
-                dz = np.zeros(6, dtype=complex)
-                dz[j] = 1j * _EPS
-                H[:, :, j] = _projected_gap(d[s] + dz[:3], c[s] + dz[3:])[2].imag / _EPS
-            H_y = np.einsum("pzy,pzw,pwv->pyv", A[s], H, A[s])
+            A_s = A[s]
+            H_y = A_s.transpose(0, 2, 1) @ (_projected_gap_hessian(d[s], c[s]) @ A_s)
             K[np.ix_(s, translations, translations)] += scale[s, None, None] * H_y
 
         return PairKinematics(value - self.g0, n, gradient, add_hessian, slip)

@@ -56,7 +56,7 @@ def main(length: float = 1.0) -> None:
     for name, stencils in variants.items():
         A = create_extended_matrix(J, stencils)
         entries = A.getInfo()["nz_used"]
-        for ordering in ("pord", "amf", "metis"):
+        for ordering in ("pord", "amf", "scotch", "metis", "qamd"):
             t0 = time.perf_counter()
             flops, factor = pattern_lu(A, ORDERINGS[ordering])
             seconds = time.perf_counter() - t0

@@ -11,7 +11,7 @@ from dataclasses import dataclass, fields
 from .cable import CableError
 from .contact.element import check_slip, resolve_normal
 from .contact.errors import ContactError
-from .same_layer import SAME_LAYER
+from .same_layer import SAME_LAYER, SAME_LAYER_STENCILS
 
 __all__ = ["ContactSettings", "COMPLIANCES"]
 
@@ -53,6 +53,15 @@ class ContactSettings:
             leaves a layer whose nominal gaps are of the order of its wires' diameter
             tolerance), or "auto" (default): "packed". In large sliding each facing point is
             re-found on the neighbour's centreline within the sliding reach.
+        same_layer_stencil: the nodes a same-layer pair ties in small sliding
+            (``strand.same_layer``): "segment" (default: node a to the facing point of the
+            neighbour's segment [b₀, b₁]) or "node" (node a to the neighbour's nearest node c,
+            the gap across c's director tangent and the slip at the facing point, carried by
+            c: two nodes a pair, as the crossings, so each LU of 1 m of Cardinal takes 2.9e10
+            operations instead of 5.3e10 and the main job's window 0.7 of the time; its results
+            differ from the default's by one to twenty times the mesh error,
+            ``benchmarks/stencils.py``). Large sliding re-finds facing points on the
+            centreline.
         slip: the friction's slip measure between layers (``strand.contact.element``, in large
             sliding ``strand.contact.sliding_slip``): "surface" (the relative motion of the two
             surface points in contact: a wire rolls on its neighbour without slip) or
@@ -69,6 +78,7 @@ class ContactSettings:
     model: str = "small"
     reach: float = 1e-3
     same_layer: str = "auto"
+    same_layer_stencil: str = "segment"
     slip: str = "surface"
 
     def __post_init__(self):
@@ -90,6 +100,11 @@ class ContactSettings:
             raise CableError(
                 f"contact same_layer {self.same_layer!r} is unknown; choose auto, "
                 f"{', '.join(SAME_LAYER)}"
+            )
+        if self.same_layer_stencil not in SAME_LAYER_STENCILS:
+            raise CableError(
+                f"contact same_layer_stencil {self.same_layer_stencil!r} is unknown; choose "
+                f"{' or '.join(SAME_LAYER_STENCILS)}"
             )
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)

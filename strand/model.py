@@ -63,7 +63,7 @@ def strand_stencils(
     else:
         out = [pair_stencils(geometry)]
     if settings.same_layer != "off":
-        pairs = same_layer_pairs(geometry, settings.same_layer)
+        pairs = same_layer_pairs(geometry, settings.same_layer, settings.same_layer_stencil)
         if settings.model == "large":
             out += [w.nodes for w in same_layer_windows(geometry, pairs, settings.reach)]
         else:
@@ -106,7 +106,9 @@ class StrandModel:
         #: contact between neighbouring wires of a layer (``[contact] same_layer``): the pairs
         #: in the geometry's order (None when off) and the group this rank evaluates
         self.same_layer_pairs = (
-            None if cs.same_layer == "off" else same_layer_pairs(geometry, cs.same_layer)
+            None
+            if cs.same_layer == "off"
+            else same_layer_pairs(geometry, cs.same_layer, cs.same_layer_stencil)
         )
         builder = same_layer_sliding_groups if cs.model == "large" else same_layer_groups
         self.same_layer = (

@@ -6,13 +6,21 @@ at a distance D found exactly (``helix_clearance``): D² = min_s 2r²(1 − cos(
 helices): layer 1 −14.1 µm (its six equal steel wires would overlap: they touch one another),
 layers 2–4 +62.0, +78.2, +65.6 µm (``tests/test_same_layer.py`` asserts them).
 
-Each node of wire j (in order of phase) faces the point of wire j+1's polyline nearest to it; the
-pair is a ``contact.segment.SegmentGroup`` pair [a, b₀, b₁] with that point's weight ξ, the
-centre-to-centre normal across the neighbour's chord (``neighbour``: the pair's gap does not
-change under rigid rotations, which the frozen normal closes by d ω²/2), the Hertz line law
-over the node's tributary length of wire (with a C¹ onset, ``contact.laws.SmoothOnset``: these
-pairs start touching without load), and Mindlin's friction with the layer's Coulomb
-coefficient. Initial gaps (``[contact] same_layer``):
+Each node a of wire j (in order of phase) faces the point of wire j+1's polyline nearest to it,
+at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) is either
+
+* ``"segment"`` (the default): a ``contact.segment.SegmentGroup`` pair [a, b₀, b₁] with the
+  weight ξ and the centre-to-centre normal across the neighbour's chord (``neighbour``); or
+* ``"node"``: a line pair of ``contact.element.ContactGroup`` [c, a] with the node c of the
+  segment nearest the facing point, the gap a's distance from the line of c's director tangent
+  (``director``), and the slip of the facing point, ``offset`` s along that tangent, carried by
+  c's section: two nodes, so the LU does not tie every node to its neighbours' segments
+  (docs/theory.md §3.4).
+
+Neither normal changes the gap under rigid rotations (a frozen normal closes it by d ω²/2). The
+normal law is the Hertz line law over the node's tributary length of wire (with a C¹ onset,
+``contact.laws.SmoothOnset``: these pairs start touching without load), the friction Mindlin's
+with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
 
 * ``"nominal"``: every neighbour at the layer's nominal gap, clipped at 0 (a layer whose helices
   would overlap is taken as touching: stranding puts its wires side by side);
@@ -44,6 +52,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .cable import Layer
+from .contact.element import ContactGroup
 from .contact.hertz import compliance, mindlin_ratio
 from .contact.kinematics import rotation_matrix
 from .contact.laws import (
@@ -62,6 +71,7 @@ from .partition import owned_rows
 
 __all__ = [
     "SAME_LAYER",
+    "SAME_LAYER_STENCILS",
     "SameLayerPairs",
     "helix_clearance",
     "same_layer_pairs",
@@ -75,6 +85,9 @@ Int = npt.NDArray[np.int64]
 
 #: choices of ``[contact] same_layer``
 SAME_LAYER = ("off", "nominal", "packed")
+#: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], or node a to the
+#: neighbour's nearest node c [c, a]
+SAME_LAYER_STENCILS = ("segment", "node")
 
 
 def helix_clearance(layer: Layer) -> float:
@@ -109,6 +122,9 @@ class SameLayerPairs:
         gap: (P,) initial gaps, m.
         tributary: (P,) length of wire a each pair stands for, m.
         layer: (P,) the layer.
+        nearest: (P,) the node of the segment nearest the facing point, c.
+        offset: (P,) where the facing point lies from c along the neighbour's tangent, m.
+        stencil: the pairs' stencil, one of ``SAME_LAYER_STENCILS``.
     """
 
     a: Int
@@ -119,13 +135,18 @@ class SameLayerPairs:
     gap: Array
     tributary: Array
     layer: npt.NDArray[np.int32]
+    nearest: Int
+    offset: Array
+    stencil: str = "segment"
 
     def __len__(self) -> int:
         return len(self.a)
 
     @property
     def stencils(self) -> Int:
-        """(P, 3) input nodes [a, b₀, b₁], anchor first."""
+        """Input nodes of each pair, anchor first: (P, 3) [a, b₀, b₁] or (P, 2) [c, a]."""
+        if self.stencil == "node":
+            return np.column_stack([self.nearest, self.a])
         return np.column_stack([self.a, self.b0, self.b1])
 
 
@@ -147,11 +168,15 @@ def _wire_pairs(geometry: StrandGeometry, w: int, w_next: int):
     return pa[keep], pb[j][keep], pb[j + 1][keep], t[keep], facing[keep], tributary[keep]
 
 
-def same_layer_pairs(geometry: StrandGeometry, gaps: str = "nominal") -> SameLayerPairs:
+def same_layer_pairs(
+    geometry: StrandGeometry, gaps: str = "nominal", stencil: str = "segment"
+) -> SameLayerPairs:
     """The pairs between neighbouring wires of every helical layer, with ``gaps`` "nominal" or
-    "packed" (module docstring)."""
+    "packed" and the ``stencil`` "segment" or "node" (module docstring)."""
     if gaps not in SAME_LAYER[1:]:
         raise ValueError(f"same-layer gaps {gaps!r}: choose nominal or packed")
+    if stencil not in SAME_LAYER_STENCILS:
+        raise ValueError(f"same-layer stencil {stencil!r}: choose segment or node")
     g = geometry
     parts = []
     for i, layer in enumerate(g.cable.layers[1:], start=1):
@@ -169,10 +194,17 @@ def same_layer_pairs(geometry: StrandGeometry, gaps: str = "nominal") -> SameLay
             normal = facing / np.linalg.norm(facing, axis=1)[:, None]
             parts.append((a, b0, b1, xi, normal, gap, tributary, np.full(len(a), i, np.int32)))
     if not parts:
-        empty = np.zeros(0)
-        return SameLayerPairs(*(np.zeros(0, np.int64),) * 3, empty, np.zeros((0, 3)), empty,
-                              empty, np.zeros(0, np.int32))  # fmt: skip
-    return SameLayerPairs(*(np.concatenate(c) for c in zip(*parts, strict=True)))
+        empty, none = np.zeros(0), np.zeros(0, np.int64)
+        return SameLayerPairs(none, none, none, empty, np.zeros((0, 3)), empty, empty,
+                              np.zeros(0, np.int32), none, empty, stencil)  # fmt: skip
+    a, b0, b1, xi, normal, gap, tributary, layer = (
+        np.concatenate(c) for c in zip(*parts, strict=True)
+    )
+    nearest = np.where(xi < 0.5, b0, b1)
+    chord = g.points[b1] - g.points[b0]
+    length = np.linalg.norm(chord, axis=1)
+    offset = np.where(xi < 0.5, xi, xi - 1.0) * length
+    return SameLayerPairs(a, b0, b1, xi, normal, gap, tributary, layer, nearest, offset, stencil)
 
 
 def same_layer_laws(
@@ -212,6 +244,17 @@ def same_layer_groups(
     if not len(rows):
         return []
     radius, law, friction = same_layer_laws(geometry, pairs, rows, settings)
+    if pairs.stencil == "node":
+        c, a = pairs.nearest[rows], pairs.a[rows]
+        tangents = geometry.tangents()
+        return [
+            ContactGroup(
+                input_to_block[pairs.stencils[rows]], geometry.points[np.column_stack([c, a])],
+                True, radius, radius, -pairs.normal[rows], law, friction, "director",
+                tangent0=np.stack([tangents[c], tangents[a]], axis=1), index=rows,
+                initial_gap=pairs.gap[rows], offset=pairs.offset[rows],
+            )
+        ]  # fmt: skip
     return [
         SegmentGroup(
             input_to_block[pairs.stencils[rows]], pairs.weight[rows], radius, radius,

@@ -62,11 +62,13 @@ def crossed_pair(
     h: float = 3e-3,
     compliance: str = "penalty",
     slip: str = "surface",
+    offset: float = 0.0,
 ):
     """Pairs of two straight wires crossing at ``angle`` (a along x, b above it), as a group.
 
     Each pair uses its own nodes (stencil blocks 0..k·n_pairs), so random per-pair states can be
-    imposed. For line pairs the wires are nearly parallel (angle 0.1 rad; Hertz: a 5 mm line).
+    imposed. For line pairs the wires are nearly parallel (angle 0.1 rad; Hertz: a 5 mm line);
+    ``offset``: b faces a's centre line that far along a from node a (m).
     """
     if line:
         angle = 0.1
@@ -83,7 +85,8 @@ def crossed_pair(
     t0 = np.repeat(np.stack([ta, tb])[None], n_pairs, 0)
     full = np.full(n_pairs, 1.0)
     laws = pair_laws(compliance, line, angle, n_pairs)
-    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0, slip=slip)
+    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0, slip=slip,
+                        offset=offset * full if offset else None)  # fmt: skip
 
 
 @pytest.mark.parametrize(("normal", "line"), KINDS)
@@ -115,16 +118,21 @@ def test_gap_hessian_matches_finite_differences(normal, line):
 
 
 @pytest.mark.parametrize(
-    ("normal", "line", "compliance", "slip"),
-    [(n, line, "penalty", "surface") for n, line in KINDS]
-    + [("director", line, "hertz", "surface") for line in (False, True)]
-    + [(n, line, c, "centreline") for n in ("frozen", "director") for line in (False, True)
-       for c in ("penalty", "hertz")],
+    ("normal", "line", "compliance", "slip", "offset"),
+    [(n, line, "penalty", "surface", 0.0) for n, line in KINDS]
+    + [("director", line, "hertz", "surface", 0.0) for line in (False, True)]
+    + [(n, line, c, "centreline", 0.0) for n in ("frozen", "director") for line in (False, True)
+       for c in ("penalty", "hertz")]
+    + [("director", True, c, "surface", 1.5e-3) for c in ("penalty", "hertz")],
 )  # fmt: skip
-def test_pair_tangent_matches_finite_differences_open_stick_slip(normal, line, compliance, slip):
-    """Residual derivatives in the three states, after a committed step with random rotations."""
+def test_pair_tangent_matches_finite_differences_open_stick_slip(
+    normal, line, compliance, slip, offset
+):
+    """Residual derivatives in the three states, after a committed step with random rotations
+    (line pairs also with b facing a 1.5 mm from node a: the same-layer pairs' "node" stencil)."""
     rng = np.random.default_rng(7)
-    group = crossed_pair(normal, line, np.radians(25), compliance=compliance, slip=slip)
+    group = crossed_pair(normal, line, np.radians(25), compliance=compliance, slip=slip,
+                         offset=offset)  # fmt: skip
     P, k = group.stencils.shape
     w = np.zeros((P * k, 6))
     w[:, 3:] = rng.normal(scale=0.05, size=(P * k, 3))
@@ -145,6 +153,27 @@ def test_pair_tangent_matches_finite_differences_open_stick_slip(normal, line, c
         assert np.abs(K_fd[:, :, left_out]).max(initial=0.0) <= 2e-6 * scale
         if state == "slip":
             assert not np.allclose(K, K.transpose(0, 2, 1))  # the slip tangent is unsymmetric
+
+
+def test_an_offset_line_pair_slips_with_the_facing_point_of_a_turning_section():
+    """b faces a's centre line s along a's tangent t from node a: turning node a's section by a
+    small δ about the pair's normal n moves that facing point by δ n × (s t), so b's surface
+    point slips by −δ s n × t against it (no offset: no slip), while the gap stays."""
+    s, delta = 1.5e-3, 1e-6
+    for offset, expected in [(s, -delta * s), (0.0, 0.0)]:
+        group = crossed_pair("director", True, 0.0, n_pairs=1, offset=offset)
+        w = np.zeros((2, 6))
+        w[1, 2] = -1e-6  # pressed: the pair carries a force, so friction is evaluated
+        group.evaluate(w, True)
+        group.commit()
+        n = group.state.normal[0]
+        t_a = np.array([1.0, 0.0, 0.0])
+        w2 = w.copy()
+        w2[0, 3:] = delta * n
+        group.evaluate(w2, True)
+        slip = group._friction[0][0]
+        assert np.allclose(slip, expected * np.cross(n, t_a), rtol=1e-6, atol=1e-15)
+        assert group.state.gap[0] == pytest.approx(-1e-6, rel=1e-9)
 
 
 @pytest.mark.parametrize("angle", [90.0, 25.0])

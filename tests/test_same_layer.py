@@ -5,6 +5,7 @@ import csv
 import io
 from dataclasses import replace
 from functools import partial
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,7 +16,8 @@ from strand.case import load_case
 from strand.contact_settings import ContactSettings
 from strand.geometry import build_geometry
 from strand.problem import StrandProblem
-from strand.run import run_case
+from strand.programme import run_programme
+from strand.run import build_problem, run_case
 from strand.same_layer import helix_clearance, same_layer_pairs
 from strand.setups.saddle import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
@@ -160,3 +162,35 @@ def test_a_frictionless_cardinal_with_packed_layers_tensions_to_40_kn(tmp_path):
     assert float(last["tension_N"]) == pytest.approx(40e3)
     torque = held_end_torque(case.cable, 40e3)
     assert float(last["end_torque_L_Nm"]) == pytest.approx(torque, rel=0.10)
+
+
+def _saddle_peak(stencil: str, h: float) -> tuple[float, float, float]:
+    """The quick 1+6 (0.3 m) at 10 kN and a 300 N saddle load, same-layer pairs of ``stencil``
+    with elements of at most ``h``: midspan deflection, end displacement (m) and the core's
+    contact force (N)."""
+    quick = Path(__file__).resolve().parents[1] / "cases" / "quick_1x6.toml"
+    case = load_case(quick, [f'contact.same_layer_stencil="{stencil}"', f"mesh.h_max={h}",
+                             "load.cycle=[1.0]"])  # fmt: skip
+    problem, programme = build_problem(case)
+    run_programme(problem, programme)
+    s = problem.setup.state()
+    core = problem.model.pair_results().force.sum()
+    problem.solver.destroy()
+    return s.deflection, s.end_displacement, core
+
+
+def test_node_and_segment_stencils_converge_together():
+    """Node to nearest node ("node", the default) and node to facing segment ("segment") are two
+    discretisations of one line contact. On the quick 1+6 at the saddle's peak the node stencil
+    moves the deflection and the end displacement by less than the mesh error (segment at h
+    against h/2; measured 0.09 against 0.67 µm, 0.004 against 0.009 µm), and at h/2 the two
+    stencils are closer than at h in deflection and in the core's contact force (measured
+    28.8 → 11.0 N of 5.3 kN)."""
+    h = 4e-3
+    segment, node = _saddle_peak("segment", h), _saddle_peak("node", h)
+    fine_segment, fine_node = _saddle_peak("segment", h / 2), _saddle_peak("node", h / 2)
+    for k in (0, 1):
+        mesh_error = abs(segment[k] - fine_segment[k])
+        assert abs(node[k] - segment[k]) < mesh_error
+    for k in (0, 2):
+        assert abs(fine_node[k] - fine_segment[k]) < abs(node[k] - segment[k])

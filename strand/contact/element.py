@@ -83,6 +83,10 @@ class ContactGroup(PairGroup):
         index: (P,) pair ids, for reporting.
         initial_gap: (P,) gap at t = 0, m (default 0: the pairs touch).
         slip: the slip measure, one of ``SLIP`` ("centreline" needs ``tangent0``).
+        offset: line pairs, "surface" slip: (P,) where b faces the centre line of a, m along
+            a's tangent from node a (default 0: at node a). The gap, the distance of x_b from
+            the tangent line of a, does not depend on it; the slip takes the surface point of
+            a's section there as rigidly carried by node a, Δu_a + Δθ_a × (s t_a + r_a n).
     """
 
     def __init__(
@@ -100,6 +104,7 @@ class ContactGroup(PairGroup):
         index=None,
         initial_gap=None,
         slip: str = "surface",
+        offset=None,
     ):
         check_slip(slip)
         if slip == "centreline" and tangent0 is None:
@@ -135,6 +140,11 @@ class ContactGroup(PairGroup):
             self.data["t0"] = np.asarray(tangent0, dtype=float)
         self.slip = slip
         self._tangent0 = None if tangent0 is None else np.asarray(tangent0, dtype=float)
+        self.offset = None
+        if offset is not None and np.any(offset):
+            if not line or slip != "surface" or tangent0 is None:
+                raise ValueError("an offset is for line pairs with the surface slip and tangents")
+            self.offset = np.asarray(offset, dtype=float)
         # g0: the initial value less the initial gap, so that g = initial_gap at t = 0
         zero = np.zeros_like(X)
         value = gap_derivatives(normal, line, X, zero, self.data).gap
@@ -150,9 +160,12 @@ class ContactGroup(PairGroup):
             if self.slip == "surface":
                 P_n = np.eye(3) - n[:, :, None] * n[:, None, :]
                 N = skew(n)
-                self._S = np.concatenate(
-                    [-P_n, self.r_a[:, None, None] * N, P_n, self.r_b[:, None, None] * N], axis=2
-                )
+                lever_a = self.r_a[:, None, None] * N
+                if self.offset is not None:  # the facing point lies s along a's tangent
+                    R = rotation_matrix(self._q_old[:, 3:6])
+                    t_a = np.einsum("pij,pj->pi", R, self._tangent0[:, 0])
+                    lever_a = lever_a + self.offset[:, None, None] * (P_n @ skew(t_a))
+                self._S = np.concatenate([-P_n, lever_a, P_n, self.r_b[:, None, None] * N], axis=2)
             else:
                 theta_a, theta_b = self._q_old[:, 3:6], self._q_old[:, 9:12]
                 t = np.stack(

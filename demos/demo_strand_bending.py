@@ -63,7 +63,7 @@ settings = {
     "cable": "cardinal",
     "mesh": {"length": 0.4},
     "load": {"tension": 40e3, "lateral": 1500.0, "cycle": [1.0, 0.0, -1.0, 0.0]},
-    "steps": {"lateral": 250.0},
+    "steps": {"lateral": 250.0, "lateral_max": 400.0},
     "contact": {"same_layer": "off"},
 }
 case = case_from_dict(settings, source="demo")

@@ -20,6 +20,9 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     reach = 1e-3              # m, large sliding: sliding room reserved either side of each pair
     same_layer = "auto"       # contact between neighbours of a layer: auto (packed) | packed
                               #   (touching, the spare gap in one place) | nominal | off
+    same_layer_stencil = "segment"  # a same-layer pair ties node a to its facing segment, or
+                              #   to the neighbour's nearest node (node: a cheaper LU, results
+                              #   within 1-20x the mesh error: docs/benchmarks.md)
     slip = "surface"          # friction's slip: surface points | centreline (the seed paper's)
 
     [load]
@@ -44,15 +47,17 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     [steps]
     tension = 1e3             # N, first tension increment (grows ×growth after easy steps);
                               # the first step closes every contact pair without friction, so
-                              # its size sets the wire forces' load-step error (benchmarks/speed.py)
-    lateral = 250.0           # N, first lateral increment of each leg of the cycle
-    lateral_max = 400.0       # N, largest lateral increment
+                              # its size sets the wire forces' load-step error (benchmarks/window.py)
+    lateral = 125.0           # N, first lateral increment of each leg of the cycle
+    lateral_max = 200.0       # N, largest lateral increment (sets the load-step error)
     curvature = 0.005         # 1/m, bending: first curvature increment of each leg
     curvature_max = 0.05      # 1/m, bending: largest curvature increment
     growth = 1.5
     control = "growth"        # growth: ×growth after easy solves | error: from the predictor's
     error_tolerance = 1e-6    #   miss (m) aimed at by each step
-    retry = false             # retry a failed step once with the other predictor, then halve
+    retry = true              # retry a failed step once with the other predictor, then halve
+    predictor = true          # start each Newton solve of a ramp (tension, legs) from the secant
+                              # predictor of its last step; false: from the last converged state
     iteration = "newton"      # newton: an LU per iteration | reuse_lu: GMRES on each Jacobian with
                               #   an earlier one's LU | lbfgs: L-BFGS on a solve's first LU;
                               #   either falls back to Newton when it fails (docs/theory.md §6)

@@ -23,7 +23,8 @@ __all__ = ["Stage", "LoadProgramme", "Position", "run_programme", "cycle_stages"
 class Stage:
     """One ramp: ``parameter`` to ``target`` in steps starting at ``first_step``, growing by
     ``growth`` after easy solves up to ``max_step``, halved down to ``min_step`` on failure.
-    ``extrapolate`` starts each solve from the secant predictor of the last two steps."""
+    ``extrapolate`` starts each solve from the secant predictor of the last two steps;
+    ``settles``: not from the first step's (``LoadStepper``)."""
 
     name: str
     parameter: str
@@ -33,6 +34,7 @@ class Stage:
     max_step: float = math.inf
     growth: float = 1.5
     extrapolate: bool = False
+    settles: bool = False
 
 
 @dataclass(frozen=True)
@@ -83,10 +85,10 @@ class LoadProgramme:
 
 def cycle_stages(
     parameter: str, amplitude: float, cycle, first_step: float, max_step: float, cuts: int,
-    growth: float,
+    growth: float, predictor: bool = True,
 ) -> list[Stage]:  # fmt: skip
     """Legs ``leg 1, leg 2, …`` to the targets ``cycle`` × ``amplitude``; every leg starts with
-    ``first_step`` (the direction may reverse) and uses the secant predictor."""
+    ``first_step`` (the direction may reverse) and uses the secant predictor (``predictor``)."""
     return [
         Stage(
             f"leg {i + 1}",
@@ -96,7 +98,7 @@ def cycle_stages(
             first_step / 2**cuts,
             max_step,
             growth,
-            extrapolate=True,
+            extrapolate=predictor,
         )  # fmt: skip
         for i, c in enumerate(cycle)
     ]
@@ -135,7 +137,7 @@ def run_programme(
         stepper = LoadStepper(
             solver, stage.first_step, stage.min_step, max_step=stage.max_step,
             growth=stage.growth, extrapolate=stage.extrapolate, controller=controller,
-            retry=retry,
+            retry=retry, settles=stage.settles,
         )  # fmt: skip
         if on_step is not None:
             stepper.on_step = lambda rec, stage=stage, index=index, stepper=stepper: on_step(

@@ -94,7 +94,8 @@ class StepSettings(WithKinds):
     balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
     control: str = "growth"  # "growth" after easy solves, or "error": the predictor's miss
     error_tolerance: float = 1e-6  # m, "error" control: the step's miss aimed at (ErrorControl)
-    retry: bool = False  # retry a failed step once with the other predictor before halving
+    retry: bool = True  # retry a failed step once with the other predictor before halving
+    predictor: bool = True  # start each solve from the secant predictor of the ramp's last step
     iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
 

@@ -89,6 +89,24 @@ def test_the_error_estimate_is_the_secant_predictors_miss(extrapolate):
             assert records[n].error == pytest.approx(miss(lam, h, hp), rel=1e-9)
 
 
+def test_a_settling_ramp_predicts_from_its_second_step_on():
+    """``settles``: the ramp's first step (a strand's first tension step, in which its pairs
+    close) is no guide: the second attempt starts from the converged state and has no error
+    estimate; the third starts from the secant predictor of the second. Without it, the second
+    is predicted from the first."""
+    for settles, predicted in [
+        (True, [False, False, True, True]),
+        (False, [False, True, True, True]),
+    ]:
+        solver = PathSolver(lambda x: x**2)
+        _, records = ramp(solver, 0.0, 1.0, first_step=0.1, min_step=1e-3, growth=1.0,
+                          extrapolate=True, settles=settles)  # fmt: skip
+        assert [p for _, p in solver.attempts[:4]] == predicted
+        assert np.isnan(records[0].error)
+        assert np.isnan(records[1].error) == settles
+        assert not np.isnan(records[2].error)
+
+
 def test_on_a_linear_path_the_steps_grow_to_the_largest_and_end_exactly():
     """No miss on u = 2λ: after the first step (the growth rule: ×1.5) every step doubles
     (grow_max) up to max_step, and the ramp ends on its end."""

@@ -137,11 +137,19 @@ def tension_then_cycle(
 ) -> LoadProgramme:
     """Tension to ``load.tension``, then the legs ``load.cycle`` × ``amplitude`` of ``parameter``,
     each starting with increment ``first``, growing up to ``largest``."""
-    steps, load = case.steps, case.load
-    tension = Stage("tension", "tension", load.tension, steps.tension,
-                    steps.tension / 2**steps.cuts, growth=steps.growth)  # fmt: skip
-    legs = cycle_stages(parameter, amplitude, load.cycle, first, largest, steps.cuts, steps.growth)
-    return LoadProgramme((tension, *legs), parameter)
+    steps = case.steps
+    legs = cycle_stages(parameter, amplitude, case.load.cycle, first, largest, steps.cuts,
+                        steps.growth, steps.predictor)  # fmt: skip
+    return LoadProgramme((tension_stage(case), *legs), parameter)
+
+
+def tension_stage(case: Case) -> Stage:
+    """The ramp of the end force to ``load.tension``, from ``steps.tension``; its first step
+    closes the contact pairs, so the secant predictor starts from the second."""
+    steps = case.steps
+    return Stage("tension", "tension", case.load.tension, steps.tension,
+                 steps.tension / 2**steps.cuts, growth=steps.growth,
+                 extrapolate=steps.predictor, settles=True)  # fmt: skip
 
 
 _KINDS: dict[str, SetupKind] = {}

@@ -77,8 +77,10 @@ class SaddleLoad:
 class SaddleSteps:
     """``[steps]`` settings of the saddle test."""
 
-    lateral: float = 250.0  # N, first lateral increment of each leg of the cycle
-    lateral_max: float = 400.0  # N, largest lateral increment
+    lateral: float = 125.0  # N, first lateral increment of each leg of the cycle
+    lateral_max: float = (
+        200.0  # N, largest lateral increment (the load-step error: docs/benchmarks)
+    )
     deflection: float = 5e-4  # m, displacement control: first deflection increment of a leg
     deflection_max: float = 2e-3  # m, largest deflection increment
     yb: float = 5e-5  # m, displacement control: first yb increment of a leg

@@ -26,7 +26,7 @@ from ..case import Case, CaseError
 from ..post import fibre_model
 from ..programme import LoadProgramme, Stage, cycle_stages
 from ..setups.tension_cycle import TensionCycleState, TensionCycleTest, TensionSection
-from . import SetupKind, lookup
+from . import SetupKind, lookup, tension_stage
 
 __all__ = [
     "TensionCycle",
@@ -107,16 +107,15 @@ class TensionCycle(SetupKind):
     def programme(self, case: Case) -> LoadProgramme:
         """The tension, the held saddle load (if any), then the cycle of the swing."""
         steps, load = case.steps, case.load
-        stages = [Stage("tension", "tension", load.tension, steps.tension,
-                        steps.tension / 2**steps.cuts, growth=steps.growth)]  # fmt: skip
+        stages = [tension_stage(case)]
         lateral = self.load(case).fixed_lateral
         if lateral != 0:
             stages.append(Stage("lateral", "lateral", lateral, steps.lateral,
                                 steps.lateral / 2**steps.cuts, steps.lateral_max,
-                                steps.growth, extrapolate=True))  # fmt: skip
+                                steps.growth, extrapolate=steps.predictor))  # fmt: skip
         first, largest = self.step_sizes(self.steps(case))
         stages += cycle_stages(self.parameter, self.amplitude(case), load.cycle, first, largest,
-                               steps.cuts, steps.growth)  # fmt: skip
+                               steps.cuts, steps.growth, steps.predictor)  # fmt: skip
         return LoadProgramme(tuple(stages), self.parameter)
 
     def reference(self, case: Case, result) -> TensionCycleReference | None:

@@ -156,6 +156,9 @@ class LoadStepper:
         retry: after a failed attempt, try the same increment once more from the last
             converged state with the predictor switched (off if ``extrapolate``, else on)
             before halving; once per step, and only where a predictor exists.
+        settles: the ramp's first step is no guide to the next (e.g. a strand's first
+            tension step, in which its contact pairs close): no predictor, and no error
+            estimate, is taken from it.
     """
 
     def __init__(
@@ -170,6 +173,7 @@ class LoadStepper:
         extrapolate: bool = False,
         controller: ErrorControl | None = None,
         retry: bool = False,
+        settles: bool = False,
     ):
         if not (0 < min_step <= first_step):
             raise ValueError("LoadStepper: need 0 < min_step <= first_step")
@@ -183,6 +187,7 @@ class LoadStepper:
         self.extrapolate = extrapolate
         self.controller = controller
         self.retry = retry
+        self.settles = settles
         self.history: list[StepRecord] = []
         #: the ramp's state after its last converged step (``ramp(resume=...)`` continues it)
         self.state: RampState | None = None
@@ -233,7 +238,8 @@ class LoadStepper:
                     rejections += 1
                     predict = self.extrapolate
                     continue
-                previous = (h, dw)
+                settling = self.settles and resume is None and not records
+                previous = None if settling else (h, dw)
                 self.solver.commit()
                 rec = StepRecord(
                     stage, trial, result.iterations, result.residuals, result.seconds, cuts,

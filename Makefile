@@ -1,16 +1,18 @@
 # The two commands a new user needs; both set the environment up first (idempotent).
-#   make run [CASE=my_case.toml]   the main job (default: the built-in Cardinal case; replaces
-#                                  that case's earlier results)
+#   make run [CASE=my_case.toml] [NP=n]   the main job (default: the built-in Cardinal case) on
+#                                  NP MPI ranks (default: every core); replaces that case's
+#                                  earlier results; ARGS="--out folder" passes more options
 #   make test                      lint (ruff), then the whole test suite
 PY := .venv/bin/python
 CASE ?= cardinal
+NP ?= $(shell nproc 2>/dev/null || echo 1)
 
 .PHONY: setup run test lint
 setup:
 	@bash scripts/bootstrap.sh
 
 run: setup
-	$(PY) -m strand run $(CASE) --overwrite
+	.venv/bin/mpirun -n $(NP) $(PY) -m strand run $(CASE) --overwrite $(ARGS)
 
 test: lint
 	$(PY) -m pytest -n auto --dist worksteal

@@ -1,0 +1,164 @@
+"""Where Newton's iterations go: contact pairs changing state between iterations, per interface.
+
+Run: [.venv/bin/mpirun -n 2] .venv/bin/python benchmarks/state_changes.py [--case case.toml]
+[--set key=value …] [--residuals]
+
+Runs the window of the main job (Cardinal, 1 m: the tension, then the first leg to +4.3 kN,
+outputs off; ``--set`` changes any setting, e.g. ``--set load.lateral=1000``) and watches every
+Jacobian evaluation (one per Newton iteration). Between consecutive iterations of a solve it
+counts the pairs that opened or closed (normal force zero against positive) and those that went
+from stick to slip or back, per interface: crossings ``i|i+1``, the core line pairs ``0|1``, and
+the same-layer pairs of layer i, ``Li-Li``. Prints, per stage, the iterations and for each
+interface its pairs, the flips per iteration of each kind, and the pairs carrying no force and
+slipping at the stage's end.
+"""
+
+import strand  # noqa: F401
+
+# isort: split
+
+import os
+import sys
+import time
+from collections import defaultdict
+
+import numpy as np
+from mpi4py import MPI
+
+from strand.contact.group import PairGroup
+from strand.model import StrandModel
+from strand.solver import LoadStepper
+
+WINDOW = [
+    "load.cycle=[1.0]",
+    "output.fields=false",
+    "output.plots=false",
+    "output.checkpoint=false",
+    "fatigue.outputs=false",
+]
+
+#: (stage, interface) -> counts
+COUNTS: dict = defaultdict(lambda: defaultdict(float))
+ITERATIONS: dict = defaultdict(int)
+STAGE = ["?"]
+SOLVE = [0]
+#: (stage, converged, residual norms) of every solve
+SOLVES: list = []
+
+
+def _label(model: StrandModel) -> None:
+    """Give every group of ``model`` the interface label of each of its pairs."""
+    pairs = model.geometry.pairs
+    for g in model.contact:
+        g._labels = np.array([f"{i}|{i + 1}" for i in pairs.interface[g.index]])
+    for g in model.same_layer:
+        layer = model.same_layer_pairs.layer[g.index]
+        g._labels = np.array([f"L{i}-L{i}" for i in layer])
+
+
+def _patch() -> None:
+    init, evaluate, ramp = StrandModel.__init__, PairGroup.evaluate, LoadStepper.ramp
+    solve = None
+
+    def model_init(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        _label(self)
+
+    def group_evaluate(self, w, jacobian=True):
+        out = evaluate(self, w, jacobian)
+        labels = getattr(self, "_labels", None)
+        if not jacobian or labels is None:
+            return out
+        closed, slipping = self.state.force > 0, self.state.slipping.copy()
+        previous = getattr(self, "_previous", None)
+        stage = STAGE[0]
+        if previous is not None and previous[0] == SOLVE[0]:
+            flips = closed != previous[1]
+            slips = slipping != previous[2]
+            for name in np.unique(labels):
+                mine = labels == name
+                COUNTS[stage, name]["open/close"] += np.count_nonzero(flips & mine)
+                COUNTS[stage, name]["stick/slip"] += np.count_nonzero(slips & mine)
+        for name in np.unique(labels):
+            mine = labels == name
+            COUNTS[stage, name]["pairs"] = np.count_nonzero(mine)
+            COUNTS[stage, name]["open at end"] = np.count_nonzero(~closed & mine)
+            COUNTS[stage, name]["slipping at end"] = np.count_nonzero(slipping & mine)
+        if self is _first_group[0]:
+            ITERATIONS[stage] += 1
+        self._previous = (SOLVE[0], closed, slipping)
+        return out
+
+    _first_group = [None]
+
+    def stepper_ramp(self, set_load, start, end, stage="load", resume=None):
+        STAGE[0] = stage
+        nonlocal solve
+        if solve is None:
+            original = self.solver.solve
+
+            def counted_solve():
+                SOLVE[0] += 1
+                result = original()
+                SOLVES.append((STAGE[0], result.converged, result.residuals))
+                return result
+
+            solve = counted_solve
+            self.solver.solve = counted_solve
+        groups = [g for g in self.solver._pairs.terms if hasattr(g, "_labels")]
+        _first_group[0] = groups[0] if groups else None
+        return ramp(self, set_load, start, end, stage, resume)
+
+    StrandModel.__init__ = model_init
+    PairGroup.evaluate = group_evaluate
+    LoadStepper.ramp = stepper_ramp
+
+
+def main(settings: list[str], case_file: str | None) -> None:
+    from strand.case import load_case
+    from strand.run import run_case
+
+    _patch()
+    comm = MPI.COMM_WORLD
+    case = load_case(case_file, [*WINDOW, *settings])
+    t0 = time.perf_counter()
+    with open(os.devnull, "w") as sink:
+        result = run_case(case, f"results/state_changes_{comm.size}", stream=sink, overwrite=True)
+    seconds = time.perf_counter() - t0
+    keys = sorted(COUNTS)
+    gathered = comm.gather({k: dict(COUNTS[k]) for k in keys})
+    iterations = comm.gather(dict(ITERATIONS))
+    if comm.rank != 0:
+        return
+    total: dict = defaultdict(lambda: defaultdict(float))
+    for part in gathered:
+        for k, v in part.items():
+            for name, n in v.items():
+                total[k][name] += n
+    its = iterations[0]
+    print(f"{len(result.steps)} steps, {result.iterations} iterations in converged steps, "
+          f"{sum(s.failed_iterations for s in result.steps)} in failed attempts, {seconds:.0f} s "
+          f"on {comm.size} rank(s); {' '.join(settings)}")  # fmt: skip
+    print(f"{'stage':10s} {'its':>5s} {'interface':9s} {'pairs':>6s} {'open/close':>10s} "
+          f"{'stick/slip':>10s} {'open@end':>8s} {'slip@end':>8s}   (flips per iteration)")  # fmt: skip
+    if "--residuals" in sys.argv:
+        for stage, converged, residuals in SOLVES:
+            print(
+                f"{stage:10s} {'ok  ' if converged else 'FAIL'} "
+                + " ".join(f"{r:.1e}" for r in residuals)
+            )
+    for stage in dict.fromkeys(k[0] for k in sorted(total)):
+        n = max(its.get(stage, 0), 1)
+        for (s, name), v in sorted(total.items()):
+            if s != stage:
+                continue
+            print(f"{stage:10s} {its.get(stage, 0):5d} {name:9s} {v['pairs']:6.0f} "
+                  f"{v['open/close'] / n:10.1f} {v['stick/slip'] / n:10.1f} "
+                  f"{v['open at end']:8.0f} {v['slipping at end']:8.0f}")  # fmt: skip
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
+    cases = [args[i + 1] for i, a in enumerate(args) if a == "--case"]
+    main(sets, cases[0] if cases else None)

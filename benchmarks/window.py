@@ -1,0 +1,258 @@
+"""The main job's window, one commit or setting against another in one run: time and load-step error.
+
+Run: .venv/bin/python benchmarks/window.py [--quick] [--ranks N] [variant …]
+(no variant named: those of DEFAULT_RUN; --quick: 0.15 m to 1 kN, a smoke test of the script)
+
+The window is the main job (Cardinal, 1 m, 40 kN) up to the first peak: the tension, then the
+first leg of the saddle load to +4.3 kN, on 2 ranks, with no outputs (the library's
+``run_programme``; the results compared are taken in memory at the ends of the stages). Each variant runs in a process of its own, one after the other, so that each has the
+machine to itself. A variant is a commit (its code from a git worktree made here, under
+/tmp/strand-<commit>, put first on PYTHONPATH; None: this tree) and case settings. Prints per
+variant its wall time (and against the first variant's), steps, Newton iterations (and in failed
+attempts), LU factorisations, time per LU and per iteration, peak memory of the largest rank;
+then, at the end of the tension and at the peak, each variant's results against the same variant
+with every load step halved (its load-step error: the largest difference of midspan deflection
+and end displacement, µm, and of any element's axial force, contact pair force and same-layer
+pair force against the largest), and against the first variant.
+"""
+
+import strand  # noqa: F401  (before petsc4py: the wheel's MPI; a variant's own code in its process)
+
+# isort: split
+
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path("results/benchmark_window")
+#: the window: tension and the first leg; no field series, checkpoints, figures or histories
+WINDOW = [
+    "load.cycle=[1.0]",
+    "output.fields=false",
+    "output.plots=false",
+    "output.checkpoint=false",
+    "fatigue.outputs=false",
+]
+QUICK = ["mesh.length=0.15", "load.lateral=1000"]
+#: the issue's starting commit (issue 39)
+START = "ef5ccec"
+
+
+@dataclass(frozen=True)
+class Variant:
+    """A commit's code (None: this tree) with case settings, its load increments (first and
+    largest, tension and lateral) scaled by ``steps`` (0.5: every step halved)."""
+
+    commit: str | None = None
+    settings: list[str] = field(default_factory=list)
+    steps: float = 1.0
+
+
+def _with_halved(variants: dict[str, Variant]) -> dict[str, Variant]:
+    """Each variant, and the same with its steps halved (``<name>, steps halved``)."""
+    out = {}
+    for name, v in variants.items():
+        out[name] = v
+        out[f"{name}, steps halved"] = Variant(v.commit, v.settings, 0.5 * v.steps)
+    return out
+
+
+VARIANTS = _with_halved(
+    {
+        START: Variant(START),
+        "default": Variant(None),
+        "two-node same-layer pairs": Variant(None, ['contact.same_layer_stencil="node"']),
+        "balance 1e-3": Variant(None, ["steps.balance=1e-3"]),
+    }
+)
+#: a run without named variants: the issue's start, today's default and the two-node same-layer
+#: pairs, each with halved steps
+DEFAULT_RUN = [START, f"{START}, steps halved", "default", "default, steps halved",
+               "two-node same-layer pairs", "two-node same-layer pairs, steps halved"]  # fmt: skip
+
+
+def slug(name: str) -> str:
+    return "".join(c if c.isalnum() else "_" for c in name).strip("_")
+
+
+def worktree(commit: str) -> Path:
+    """A checkout of ``commit`` under /tmp (made once), for its code on PYTHONPATH."""
+    path = Path(f"/tmp/strand-{commit}")
+    if not (path / "strand").is_dir():
+        subprocess.run(["git", "worktree", "add", "--detach", str(path), commit], check=True,
+                       capture_output=True)  # fmt: skip
+    return path
+
+
+def measures(problem) -> dict:
+    """The results compared between variants, at a stage's end: midspan deflection and end
+    displacement (m), every element's axial force (N, the geometry's order), and the normal
+    force of every contact pair and same-layer pair (N, the geometry's order)."""
+    from strand.post import cell_results
+
+    m = problem.model
+    s = problem.setup.state()
+    same = m.same_layer_history().get("force", np.zeros(0))
+    return {
+        "deflection": s.deflection,
+        "end": s.end_displacement,
+        "N": cell_results(m).axial,
+        "pairs": m.pair_results().force,
+        "same": same,
+    }
+
+
+def run_variant(name: str, quick: bool) -> dict:
+    """Run one variant in this process (the code on the path), outputs off; its measurements,
+    and its results at the ends of the stages in ``ROOT/<name>.npz``."""
+    from mpi4py import MPI
+    from petsc4py import PETSc
+
+    from strand.build import build_problem, step_control
+    from strand.case import load_case
+    from strand.programme import run_programme
+
+    comm = MPI.COMM_WORLD
+    PETSc.Log.begin()
+    variant = VARIANTS[name]
+    settings = [*WINDOW, *variant.settings, *(QUICK if quick else [])]
+    case = load_case(None, settings)
+    if variant.steps != 1.0:  # the variant's own increments (its code's defaults), scaled
+        s = case.steps
+        scaled = {"tension": s.tension, "lateral": s.lateral, "lateral_max": s.lateral_max}
+        case = load_case(None, [*settings, *(f"steps.{k}={variant.steps * v!r}"
+                                             for k, v in scaled.items())])  # fmt: skip
+    t0 = time.perf_counter()
+    problem, programme = build_problem(case)
+    ends, steps = [], []
+
+    def on_step(stage, record, position):
+        steps.append(record)
+        if abs(record.load - stage.target) <= 1e-9 * max(1.0, abs(stage.target)):
+            ends.append(measures(problem))
+
+    failure = None
+    try:
+        run_programme(problem, programme, on_step=on_step, **step_control(case))
+    except RuntimeError as e:  # LoadStepFailure
+        failure = str(e)
+    seconds = time.perf_counter() - t0
+    problem.solver.destroy()
+    lu = PETSc.Log.Event("MatLUFactorNum").getPerfInfo()
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    if comm.rank == 0:
+        ROOT.mkdir(parents=True, exist_ok=True)
+        np.savez(ROOT / f"{slug(name)}.npz",
+                 **{f"{k}_{i}": np.asarray(v) for i, e in enumerate(ends) for k, v in e.items()})  # fmt: skip
+    return {
+        "seconds": seconds,
+        "steps": len(steps),
+        "iterations": sum(r.iterations for r in steps),
+        "failed_iterations": sum(r.failed_iterations for r in steps),
+        "lu": lu["count"],
+        "lu_seconds": lu["time"],
+        "peak_mib": comm.allreduce(peak, op=MPI.MAX),
+        "failure": failure,
+    }
+
+
+def ends_of(name: str) -> list[dict]:
+    """The results of ``name`` at the ends of its stages."""
+    data = np.load(ROOT / f"{slug(name)}.npz")
+    count = 1 + max(int(k.rsplit("_", 1)[1]) for k in data.files)
+    return [{k.rsplit("_", 1)[0]: data[k] for k in data.files if k.endswith(f"_{i}")}
+            for i in range(count)]  # fmt: skip
+
+
+def differences(name: str, reference: str) -> dict[str, float]:
+    """The largest differences of ``name`` from ``reference`` at the ends of the stages both
+    reached: deflection and end displacement (µm); element axial forces, pair forces and
+    same-layer pair forces, each against the reference's largest."""
+    out = {"deflection": 0.0, "end": 0.0, "N": 0.0, "pairs": 0.0, "same": 0.0}
+    for a, b in zip(ends_of(name), ends_of(reference), strict=False):
+        for key in ("deflection", "end"):
+            out[key] = max(out[key], 1e6 * abs(float(a[key]) - float(b[key])))
+        for key in ("N", "pairs", "same"):
+            if a[key].shape == b[key].shape and len(b[key]):
+                out[key] = max(out[key], np.abs(a[key] - b[key]).max() / np.abs(b[key]).max())
+            else:
+                out[key] = np.nan
+    return out
+
+
+def stamp() -> str:
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()  # fmt: skip
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                           capture_output=True, text=True).stdout.strip()  # fmt: skip
+    return (f"{time.strftime('%Y-%m-%d %H:%M')}, this tree at {commit}{' (modified)' if dirty else ''}"
+            f", {os.cpu_count()} cores, `python benchmarks/window.py {' '.join(sys.argv[1:])}`")  # fmt: skip
+
+
+def main(names: list[str], quick: bool, ranks: int) -> None:
+    rows = {}
+    print(f"stamp: {stamp()}")
+    for name in names:
+        variant = VARIANTS[name]
+        print(f"running: {name} …", file=sys.stderr, flush=True)
+        env = dict(os.environ)
+        if variant.commit is not None:
+            env["PYTHONPATH"] = f"{worktree(variant.commit)}:{env.get('PYTHONPATH', '')}"
+        mpirun = [str(Path(sys.executable).parent / "mpirun"), "-n", str(ranks)]
+        command = [*mpirun, sys.executable, __file__, *(["--quick"] if quick else []), "--one",
+                   name]  # fmt: skip
+        done = subprocess.run(command, capture_output=True, text=True, env=env)
+        if done.returncode != 0:
+            print(done.stderr[-3000:], file=sys.stderr)
+            raise SystemExit(f"{name}: failed (exit code {done.returncode})")
+        rows[name] = json.loads(done.stdout.strip().splitlines()[-1])
+    first = rows[names[0]]["seconds"]
+    print(f"\n{'variant':34s} {'time (s)':>8s} {'/first':>6s} {'steps':>5s} {'its':>5s} "
+          f"{'+failed':>7s} {'LUs':>5s} {'s/LU':>5s} {'s/it':>5s} {'peak MiB':>8s}")  # fmt: skip
+    for name, r in rows.items():
+        its = r["iterations"] + r["failed_iterations"]
+        print(f"{name:34s} {r['seconds']:8.0f} {r['seconds'] / first:6.2f} {r['steps']:5d} "
+              f"{r['iterations']:5d} {r['failed_iterations']:7d} {r['lu']:5d} "
+              f"{r['lu_seconds'] / max(r['lu'], 1):5.2f} {r['seconds'] / max(its, 1):5.2f} "
+              f"{r['peak_mib']:8.0f}" + (f"  FAILED: {r['failure']}" if r["failure"] else ""))  # fmt: skip
+    print("\nat the end of the tension and at the peak, the largest differences: deflection and "
+          "end displacement (µm), element axial forces, contact pair and same-layer pair forces "
+          "(each against the largest)")  # fmt: skip
+    print(f"{'':56s} {'deflection':>10s} {'end':>8s} {'axial':>8s} {'pairs':>8s} {'same':>8s}")
+    for name in rows:
+        compared = [(f"{name} against its steps halved", f"{name}, steps halved")]
+        if name != names[0] and not name.endswith("steps halved"):
+            compared.append((f"{name} against {names[0]}", names[0]))
+        for label, reference in compared:
+            if reference in rows:
+                d = differences(name, reference)
+                print(f"{label:56s} {d['deflection']:10.3f} {d['end']:8.3f} {d['N']:8.1e} "
+                      f"{d['pairs']:8.1e} {d['same']:8.1e}")  # fmt: skip
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    quick = "--quick" in args
+    ranks = 2
+    if "--ranks" in args:
+        ranks = int(args[args.index("--ranks") + 1])
+        del args[args.index("--ranks") : args.index("--ranks") + 2]
+    args = [a for a in args if a != "--quick"]
+    if args[:1] == ["--one"]:
+        measured = run_variant(args[1], quick)
+        from mpi4py import MPI
+
+        if MPI.COMM_WORLD.rank == 0:
+            print(json.dumps(measured))
+    else:
+        unknown = [a for a in args if a not in VARIANTS]
+        if unknown:
+            raise SystemExit(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
+        main(args or DEFAULT_RUN, quick, ranks)

@@ -30,10 +30,10 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam, moment_virtual_work
-from strand.mesh import beam_space, straight_beam_mesh
-from strand.output import FieldWriter
-from strand.parallel import serial_only
-from strand.plots import offscreen_plotter, save, tubes
+from strand.app.plots import offscreen_plotter, save, tubes
+from strand.cable.mesh import beam_space, straight_beam_mesh
+from strand.model.fields import FieldWriter
+from strand.model.parallel import serial_only
 from strand.solver import LoadStepper, NonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process

@@ -47,6 +47,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
+from strand.cable.mesh import beam_space, polyline_mesh
 from strand.contact import (
     ElasticSlip,
     PenaltyLaw,
@@ -55,8 +56,7 @@ from strand.contact import (
     contact_terms,
     locate_nodes,
 )
-from strand.mesh import beam_space, polyline_mesh
-from strand.partition import slab_partitioner
+from strand.model.partition import slab_partitioner
 from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
 
 comm = MPI.COMM_WORLD

@@ -30,8 +30,8 @@ from dolfinx.fem.petsc import NonlinearProblem
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.mesh import beam_space, straight_beam_mesh
-from strand.parallel import serial_only
+from strand.cable.mesh import beam_space, straight_beam_mesh
+from strand.model.parallel import serial_only
 from strand.solver import NewtonOptions, NodalLoad
 from strand.solver import NonlinearProblem as StrandNonlinearProblem
 

@@ -30,8 +30,8 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam, moment_virtual_work
-from strand.app.plots import offscreen_plotter, save, tubes
 from strand.cable.mesh import beam_space, straight_beam_mesh
+from strand.cable.pictures import offscreen_plotter, save, tubes
 from strand.model.fields import FieldWriter
 from strand.model.parallel import serial_only
 from strand.solver import LoadStepper, NonlinearProblem

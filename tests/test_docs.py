@@ -60,9 +60,8 @@ def test_every_module_has_an_api_page():
 
 
 def test_the_settings_reference_lists_every_setting_with_its_default(built):
-    from strand.app.case import SECTIONS
     from strand.app.kinds import registered
-    from strand.app.settings import KIND_SECTIONS
+    from strand.app.settings import KIND_SECTIONS, SECTIONS
 
     page = (built / "_generated" / "settings.html").read_text()
     for section, cls in SECTIONS.items():

@@ -129,11 +129,11 @@ def _table(section: str, classes, template: dict, skip=("by_kind",)) -> list[str
 
 
 def settings_reference() -> str:
-    """The settings reference page (MyST), from ``strand.app.case.SECTIONS``, the registered set-up
-    kinds' own settings and the cable's fields."""
+    """The settings reference page (MyST), from ``strand.app.settings.SECTIONS``, the registered
+    set-up kinds' own settings and the cable's fields."""
     import strand.app.case
     from strand.app import kinds
-    from strand.app.settings import KIND_SECTIONS
+    from strand.app.settings import KIND_SECTIONS, SECTIONS
     from strand.cable import description as cable
 
     template = _template_comments(strand.app.case.__doc__)
@@ -168,7 +168,7 @@ def settings_reference() -> str:
         out.append(f"| `{key}` | {where} | {_cell(text)} |")
     optional = [f.name for f in fields(cable.Wire) if _default(f) != "required"]
     out += ["", f"Every key is required but {', '.join(f'`{k}`' for k in optional)}."]
-    for section, cls in strand.app.case.SECTIONS.items():
+    for section, cls in SECTIONS.items():
         out += ["", f"## `[{section}]`", ""]
         doc = (inspect.getdoc(cls) or "").split("\n\n")[0]
         if doc and "Attributes:" not in doc and not doc.startswith(f"{cls.__name__}("):

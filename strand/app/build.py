@@ -13,12 +13,13 @@ from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme
 from ..solver import ErrorControl, NewtonOptions
 from ..solver.convergence import STALL_AFTER
-from .case import Case, check_loads_given
+from .case import check_loads_given
 from .case_toml import case_toml
 from .folder import RUN_MARKER, prepare_results_folder
 from .kinds import kind_of
 from .recorders import RunStep
 from .run_result import Start
+from .settings import Case
 
 __all__ = [
     "settings_text",

@@ -110,25 +110,18 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
 from ..cable.description import Cable, CableError, cable_from_dict, cardinal, judge120, load_cable
 from ..cable.input_file import read_text
-from ..model.contact_settings import ContactSettings
-from .settings import (
-    KIND_SECTIONS,
-    FatigueSettings,
-    LoadSettings,
-    MeshSettings,
-    OutputSettings,
-    StepSettings,
-)
+from .errors import CaseError
+from .settings import KIND_SECTIONS, SECTIONS, Case
 
+#: ``Case`` (``strand.app.settings``) and ``CaseError`` (``strand.app.errors``) are importable
+#: from here too
 __all__ = [
-    "Case",
-    "CaseError",
     "load_case",
     "case_from_dict",
     "check_loads_given",
@@ -138,43 +131,11 @@ __all__ = [
 BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
 
 
-class CaseError(ValueError):
-    """A case file that cannot be used; the message names the file and the setting."""
-
-
-@dataclass(frozen=True)
-class Case:
-    cable: Cable
-    mesh: MeshSettings = field(default_factory=MeshSettings)
-    contact: ContactSettings = field(default_factory=ContactSettings)
-    load: LoadSettings = field(default_factory=LoadSettings)
-    steps: StepSettings = field(default_factory=StepSettings)
-    output: OutputSettings = field(default_factory=OutputSettings)
-    fatigue: FatigueSettings = field(default_factory=FatigueSettings)
-    source: str = "built-in default"
-    #: the ``[load]`` settings a run needs that the case leaves at their defaults (Cardinal's)
-    #: although its cable is not a built-in one (``check_loads_given``)
-    unset_loads: tuple[str, ...] = ()
-
-
-SECTIONS = {
-    "mesh": MeshSettings,
-    "contact": ContactSettings,
-    "load": LoadSettings,
-    "steps": StepSettings,
-    "output": OutputSettings,
-    "fatigue": FatigueSettings,
-}
-
 #: settings that may be zero or negative (all other numbers must be positive; a set-up kind
 #: names its own: ``SetupKind.signed``)
 _SIGNED = {("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 #: settings for which 0 means "off" (they must not be negative)
 _ZERO_IS_OFF = {("steps", "balance"), ("fatigue", "end_zone"), ("fatigue", "breaking_strength")}
-#: PETSc's line searches for Newton (``[steps] line_search``)
-LINE_SEARCHES = ("cp", "basic", "bt", "l2")
-#: ``[steps] control``: growth after easy solves, or the predictor-miss controller (``ErrorControl``)
-STEP_CONTROLS = ("growth", "error")
 
 
 def _boolean(where: str, value) -> bool:
@@ -308,7 +269,7 @@ def _cable(spec, base: Path | None, source: str) -> Cable:
 def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
     """The case of ``data`` (a case file's tables; relative cable files from ``base``), every
     setting checked (``CaseError`` naming ``source`` and the setting)."""
-    from .checks import checked_case  # it runs the set-up kinds' checks, which import Case
+    from .checks import checked_case  # here: the set-up kinds load when a case is read
 
     allowed = ["cable", *SECTIONS]
     unknown = sorted(set(data) - set(allowed))

@@ -12,7 +12,7 @@ import math
 from dataclasses import fields
 
 from ..cable.description import Cable
-from .case import SECTIONS, Case
+from .settings import SECTIONS, Case
 
 __all__ = ["case_toml", "cable_table", "strand_version"]
 

@@ -2,10 +2,10 @@
 the span, the set-up kind's own checks, the fatigue curves and layers, and a ``[fatigue] spectrum``
 run as the ``[load] sweep``.
 
-``strand.app.case`` reads each setting and checks it alone (type, sign); ``checked_case`` then checks
-the settings against one another and against the cable, before any computing. It sits beside the
-set-up kinds (``strand.app.kinds``), whose checks it runs: it imports ``strand.app.case``, which calls it
-when it reads a case.
+``strand.app.case`` reads each setting and checks it alone (type, sign); ``checked_case`` then
+checks the settings against one another and against the cable, before any computing. It sits
+above the set-up kinds (``strand.app.kinds``), whose checks it runs, and below
+``strand.app.case``, which calls it when it reads a case.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ from ..cable.description import Cable
 from ..fatigue.sn import SN_CURVES
 from ..solver.convergence import ITERATIONS
 from . import kinds
-from .case import LINE_SEARCHES, STEP_CONTROLS, Case, CaseError
-from .settings import FatigueSettings
+from .errors import CaseError
+from .settings import LINE_SEARCHES, STEP_CONTROLS, Case, FatigueSettings
 
 __all__ = ["checked_case"]
 

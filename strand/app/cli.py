@@ -92,7 +92,7 @@ def _mesh(args) -> int:
     print(f"\nbuilt in {t_geo:.3f} s (geometry and pairs) + {t_mesh:.3f} s (dolfinx mesh{where})")
     write_centrelines(geometry, out / "centrelines.vtu")
     if not args.no_picture:
-        from .plots import strand_picture
+        from ..cable.pictures import strand_picture
 
         print("picture:", strand_picture(geometry, out / "mesh.png"))
     return 0
@@ -121,7 +121,7 @@ def _case_to_run(args, parser):
 
 
 def _run(args, parser) -> int:
-    from .case import CaseError
+    from .errors import CaseError
 
     case = _case_to_run(args, parser)  # every setting is checked here, before computing
     if case is None:
@@ -264,7 +264,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     from ..cable.description import CableError
     from ..model.checkpoint import CheckpointError
-    from .case import CaseError
+    from .errors import CaseError
     from .fatigue.load_history import HistoryError
     from .folder import FolderError
 

@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from ..model.post import CellResults, sector_of
-from .case import Case
 from .kinds import kind_of
+from .settings import Case
 
 __all__ = ["compare_case", "force_differences", "difference_table", "overlay_figure"]
 

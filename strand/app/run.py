@@ -32,10 +32,10 @@ from ..model.parallel import root_stream
 from .build import build_problem as build_problem
 from .build import restart_from, results_folder
 from .build import setup_and_programme as setup_and_programme
-from .case import Case
 from .run_result import RunResult as RunResult
 from .run_result import Start as Start
 from .runner import run_programme_with_outputs
+from .settings import Case
 from .summary import summarize as summarize
 from .sweep import run_sweep as run_sweep
 

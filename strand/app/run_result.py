@@ -35,7 +35,7 @@ class RunResult:
     tension_end: CellResults | None = None
     tension_end_pairs: PairResults | None = None  # the contact pairs there
     first_cycle: CellResults | None = None  # at the first step of the cycle
-    #: the fatigue report of the run (``fatigue_report.FatigueReport``; None without one)
+    #: the fatigue report of the run (``fatigue.findings.FatigueReport``; None without one)
     fatigue: Any = None
     #: what the set-up kind's analytical reference predicts for the run (``SetupKind.reference``)
     reference: Any = None

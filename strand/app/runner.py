@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 from ..model.parallel import is_root
@@ -21,7 +22,6 @@ from ..model.programme import LoadProgramme, Position, Stage, run_programme
 from ..model.reactions import ReactionGauge
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
-from .case import Case
 from .fatigue.recorders import PairHistory, WireSectionHistory
 from .kinds import kind_of
 from .recorders import (
@@ -39,6 +39,7 @@ from .recorders import (
 )
 from .run_files import write_folder_readme
 from .run_result import RunResult, Start
+from .settings import Case
 from .summary import summarize, wire_stress_line, yield_warnings
 
 __all__ = ["run_programme_with_outputs", "Recording", "Progress", "run_fatigue_report"]
@@ -228,10 +229,11 @@ def run_programme_with_outputs(
     result.tension_end, result.tension_end_pairs = keys.tension_end, keys.tension_end_pairs
     result.bending, result.slip = recording.bending.rows, recording.slip.rows
     result.reactions = recording.steps_table.reactions
-    result.reference = kind_of(case).reference(case, result)
+    kind = kind_of(case)
+    result.reference = kind.reference(case, result)
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=recording.seconds)
-    summary = summarize(case, result, problem)
+    summary = summarize(case, result, problem, kind.summary_lines(case, result))
     print(summary, file=stream, flush=True)
     if is_root():  # the summary, report and figures read what every rank has (or rank 0 wrote)
         (folder / "summary.txt").write_text(summary)
@@ -279,7 +281,7 @@ def _report_and_figures(
     if case.output.plots:
         from .plots import fatigue_figures, results_figures
 
-        paths = results_figures(case, result, problem)
+        paths = results_figures(case, result, problem, partial(kind_of(case).figures, case, result))
         if report is not None:
             paths += fatigue_figures(result.folder, report)
         for path in paths:

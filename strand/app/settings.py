@@ -1,4 +1,6 @@
-"""The settings sections of a case (``strand.app.case``): mesh, load, load steps, outputs, fatigue.
+"""The settings of a case: its sections (mesh, load, load steps, outputs, fatigue) and the
+``Case`` that holds them with the cable and its contact settings (``strand.app.case`` reads them
+from a case file).
 
 Every setting has a default. ``[load]`` and ``[steps]`` hold the settings every set-up kind shares
 and, in ``by_kind``, each registered kind's own (``strand.app.kinds``), all read flat as the case
@@ -15,8 +17,10 @@ from functools import partial
 from typing import Any
 
 from ..cable.description import Cable
+from ..model.contact_settings import ContactSettings
 
 __all__ = [
+    "Case",
     "MeshSettings",
     "LoadSettings",
     "StepSettings",
@@ -39,9 +43,9 @@ KIND_SECTIONS = {"load": "load_settings", "steps": "step_settings"}
 
 def _kind_defaults(section: str) -> dict[str, Any]:
     """Every registered set-up kind's own settings of ``section`` at their defaults, by kind."""
-    from . import kinds
+    from .kinds.registry import registered  # with the package: the built-in kinds registered
 
-    return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in kinds.registered()}
+    return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in registered()}
 
 
 class WithKinds:
@@ -98,6 +102,12 @@ class StepSettings(WithKinds):
     predictor: bool = True  # start each solve from the secant predictor of the ramp's last step
     iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
+
+
+#: PETSc's line searches for Newton (``[steps] line_search``)
+LINE_SEARCHES = ("cp", "basic", "bt", "l2")
+#: ``[steps] control``: growth after easy solves, or the predictor-miss controller (``ErrorControl``)
+STEP_CONTROLS = ("growth", "error")
 
 
 @dataclass(frozen=True)
@@ -161,3 +171,29 @@ class FatigueSettings:
             return self.end_zone
         pitch = cable.layers[-1].pitch
         return pitch if math.isfinite(pitch) else 0.0
+
+
+@dataclass(frozen=True)
+class Case:
+    cable: Cable
+    mesh: MeshSettings = field(default_factory=MeshSettings)
+    contact: ContactSettings = field(default_factory=ContactSettings)
+    load: LoadSettings = field(default_factory=LoadSettings)
+    steps: StepSettings = field(default_factory=StepSettings)
+    output: OutputSettings = field(default_factory=OutputSettings)
+    fatigue: FatigueSettings = field(default_factory=FatigueSettings)
+    source: str = "built-in default"
+    #: the ``[load]`` settings a run needs that the case leaves at their defaults (Cardinal's)
+    #: although its cable is not a built-in one (``check_loads_given``)
+    unset_loads: tuple[str, ...] = ()
+
+
+#: the sections of a case file after ``cable``, and their settings classes
+SECTIONS = {
+    "mesh": MeshSettings,
+    "contact": ContactSettings,
+    "load": LoadSettings,
+    "steps": StepSettings,
+    "output": OutputSettings,
+    "fatigue": FatigueSettings,
+}

@@ -1,18 +1,20 @@
 """The closing summary of a run (``summary.txt``): its effort, the tensioned state against the
-fibre model, the set-up kind's own lines (``SetupKind.summary_lines``), the bending stiffness
-bounds, the strand's end reactions (tension, torque, bending moments; Costello's torque beside
-them after tension), and any warning or failure. Units: N, N m, N/m, µε, MPa, s."""
+fibre model, the set-up kind's own lines (``SetupKind.summary_lines``, which the runner hands
+in), the bending stiffness bounds, the strand's end reactions (tension, torque, bending moments;
+Costello's torque beside them after tension), and any warning or failure. Units: N, N m, N/m,
+µε, MPa, s."""
 
 from __future__ import annotations
+
+from collections.abc import Sequence
 
 import numpy as np
 
 from ..cable.geometry import LINE
 from ..model.pair_results import PairResults
 from ..model.post import bending_stiffness_bounds, fibre_model
-from .case import Case
-from .kinds import kind_of
 from .run_result import RunResult
+from .settings import Case
 
 __all__ = [
     "summarize",
@@ -28,12 +30,13 @@ __all__ = [
 Array = np.ndarray
 
 
-def summarize(case: Case, result: RunResult, problem) -> str:
-    """The closing summary: effort, key results, and the tension stage against the fibre model."""
+def summarize(case: Case, result: RunResult, problem, kind_lines: Sequence[str]) -> str:
+    """The closing summary: effort, key results, and the tension stage against the fibre model;
+    ``kind_lines``: the set-up kind's own (``SetupKind.summary_lines``), after the reactions."""
     lines = [effort_line(result)]
     lines += tension_lines(case, result, problem.model.geometry)
     lines += reaction_lines(case, result)
-    lines += kind_of(case).summary_lines(case, result)
+    lines += kind_lines
     ei_min, ei_max = bending_stiffness_bounds(case.cable)
     lines.append(f"bending stiffness bounds: EI_min {ei_min:.1f} N m², EI_max {ei_max:.0f} N m²")
     for w in result.warnings:

@@ -20,11 +20,11 @@ from ..model.checkpoint import restore
 from ..model.parallel import is_root, on_root, root_stream
 from ..model.programme import LoadProgramme, Position
 from .build import build_problem, results_folder, settings_text, setup_and_programme
-from .case import Case
 from .folder import FolderError, writable_folder
 from .kinds import kind_of
 from .run_result import RunResult, Start
 from .runner import run_programme_with_outputs
+from .settings import Case
 
 __all__ = ["run_sweep", "SweepTable", "sweep_table", "fatigue_columns"]
 
@@ -146,7 +146,7 @@ def sweep_table(case: Case, parameter: str, unit: str, results: list[RunResult])
 
 
 def fatigue_columns(report, n_layers: int) -> dict[str, float]:
-    """What a member's fatigue report (``fatigue_report.FatigueReport``; None: {}) says about
+    """What a member's fatigue report (``fatigue.findings.FatigueReport``; None: {}) says about
     the fatigue question, by column name with its unit: per layer (0: the core) and zone (free
     span, clamp zone) the largest surface stress range (MPa); per zone the worst crossing by
     Ruiz's F₂ (MPa J/m²) and its slip amplitude (µm), and the same for the line contacts (their

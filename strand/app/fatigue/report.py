@@ -29,7 +29,6 @@ Units: SI in the computation; the CSV columns name theirs (µm, MPa where that r
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -44,33 +43,20 @@ from ...fatigue.poffenberger import span_check
 from ...fatigue.sn import SN_CURVES, SNCurve, miner_damage
 from ...fatigue.stress import shear_stress, surface_stress
 from ...fatigue.zones import in_clamp_zone, zone_names
-from ..case import FatigueSettings
 from ..history import History, read_history
+from ..settings import FatigueSettings
+from .findings import FatigueReport
 from .tension_check import tension_check
 from .text import summary_text
 
-__all__ = ["FatigueReport", "fatigue_report", "ReportError"]
+#: ``FatigueReport`` (``strand.app.fatigue.findings``) is importable from here too
+__all__ = ["fatigue_report", "ReportError"]
 
 Array = npt.NDArray[np.float64]
 
 
 class ReportError(ValueError):
     """A results folder without what the report needs (one line, naming the file)."""
-
-
-@dataclass
-class FatigueReport:
-    """What the report found (arrays per pair, per element, per wire) and its summary text."""
-
-    cycles: Cycles
-    crossings: dict[str, Array]
-    elements: dict[str, Array]
-    wires: dict[str, Array]
-    poffenberger_swart: dict | None  # None: no clamp; "holds" False: skipped, "reason" says why
-    text: str
-    end_zone: float = 0.0  # m, the clamp zone's length at each end
-    length: float = 0.0  # m, the span
-    tension_check: dict | None = None  # the strand-level T–N check (``tension_check``)
 
 
 def _surface_angles(n: int) -> Array:

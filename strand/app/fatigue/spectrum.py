@@ -32,7 +32,7 @@ import numpy.typing as npt
 from ...fatigue.spectrum import spectrum_damage
 from ...fatigue.tn import TENSION_CYCLE_SHARE
 from ...fatigue.zones import ZONES, zone_names
-from ..case import Case
+from ..settings import Case
 
 __all__ = ["SpectrumError", "SpectrumReport", "spectrum_report", "write_spectrum"]
 

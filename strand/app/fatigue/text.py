@@ -17,7 +17,7 @@ from ...fatigue.zones import ZONES
 
 if TYPE_CHECKING:
     from ..settings import FatigueSettings
-    from .report import FatigueReport
+    from .findings import FatigueReport
 
 __all__ = ["summary_text"]
 

@@ -22,9 +22,10 @@ from ...analytical import StickEstimate
 from ...cable.description import Cable
 from ...model.post import LayerFields
 from ...setups.bending import ZoneBending
-from ..case import Case, CaseError
+from ..errors import CaseError
 from ..recorders import SlipFractions, StepBending
-from . import SetupKind
+from ..settings import Case
+from .base import SetupKind
 
 __all__ = [
     "UniformBending",

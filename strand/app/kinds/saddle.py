@@ -39,8 +39,9 @@ import numpy as np
 import numpy.typing as npt
 
 from ...cable.description import Cable
-from ..case import Case, CaseError
-from . import SetupKind
+from ..errors import CaseError
+from ..settings import Case
+from .base import SetupKind
 
 __all__ = [
     "Saddle",

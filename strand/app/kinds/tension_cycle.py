@@ -25,8 +25,10 @@ import numpy as np
 from ...model.post import fibre_model
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ...setups.tension_cycle import TensionCycleState, TensionCycleTest, TensionSection
-from ..case import Case, CaseError
-from . import SetupKind, lookup, tension_stage
+from ..errors import CaseError
+from ..settings import Case
+from .base import SetupKind, tension_stage
+from .registry import lookup
 
 __all__ = [
     "TensionCycle",

@@ -34,10 +34,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from strand import bending_stiffness_bounds, fibre_model, is_root
 from strand.app.case import case_from_dict
 from strand.app.run import run_case
-from strand.model.parallel import is_root
-from strand.model.post import bending_stiffness_bounds, fibre_model
 
 rank0 = is_root()
 

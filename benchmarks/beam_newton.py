@@ -18,7 +18,7 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.mesh import beam_space, input_to_block, polyline_mesh
+from strand.cable.mesh import beam_space, input_to_block, polyline_mesh
 from strand.solver import NodalLoad, NonlinearProblem
 
 
@@ -75,7 +75,7 @@ def main(n_cells: int = 10_000) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(int(sys.argv[1]) if len(sys.argv) > 1 else 10_000)

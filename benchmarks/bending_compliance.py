@@ -19,10 +19,10 @@ import sys
 import time
 
 from strand.analytical import StickSlipLaw
-from strand.cable import cardinal
-from strand.case import case_from_dict
-from strand.post import bending_stiffness_bounds
-from strand.run import run_case
+from strand.app.case import case_from_dict
+from strand.app.run import run_case
+from strand.cable.description import cardinal
+from strand.model.post import bending_stiffness_bounds
 
 #: variant: (output folder, [contact] settings)
 VARIANTS = {
@@ -89,7 +89,7 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(float(a) for a in sys.argv[1:3]))

@@ -15,8 +15,8 @@ import resource
 import sys
 import time
 
-from strand.case import load_case
-from strand.run import run_case
+from strand.app.case import load_case
+from strand.app.run import run_case
 
 
 def main(case_file: str | None = None) -> None:
@@ -66,7 +66,7 @@ def main(case_file: str | None = None) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*sys.argv[1:2])

@@ -17,12 +17,12 @@ import time
 
 import numpy as np
 
-from strand.cable import cardinal
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.problem import StrandProblem
+from strand.cable.description import cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.problem import StrandProblem
+from strand.model.strand_contact import centreline_gaps
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
-from strand.strand_contact import centreline_gaps
 
 
 def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
@@ -86,7 +86,7 @@ def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False)
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]

@@ -17,13 +17,13 @@ import tempfile
 import time
 from pathlib import Path
 
-from strand.cable import cardinal
-from strand.contact_settings import ContactSettings
-from strand.fatigue_recorders import PairHistory, WireSectionHistory
-from strand.geometry import build_geometry
-from strand.post import CellEvaluator, cell_results
-from strand.problem import StrandProblem
-from strand.recorders import AxialForceTable, FieldSeries, RunStep, StepContext
+from strand.app.fatigue.recorders import PairHistory, WireSectionHistory
+from strand.app.recorders import AxialForceTable, FieldSeries, RunStep, StepContext
+from strand.cable.description import cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.post import CellEvaluator, cell_results
+from strand.model.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
 
@@ -86,7 +86,7 @@ def main(steps: int = 10) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(int(a) for a in sys.argv[1:2]))

@@ -22,9 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from strand.case import load_case
-from strand.geometry import build_geometry
-from strand.run import run_case
+from strand.app.case import load_case
+from strand.app.run import run_case
+from strand.cable.geometry import build_geometry
 
 
 def main(lengths: list[float], extra: list[str]) -> None:
@@ -64,7 +64,7 @@ def main(lengths: list[float], extra: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]

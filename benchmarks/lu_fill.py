@@ -23,10 +23,10 @@ from datetime import date
 
 import numpy as np
 
-from strand.case import load_case
-from strand.geometry import build_geometry
-from strand.problem import StrandProblem
-from strand.same_layer import same_layer_pairs
+from strand.app.case import load_case
+from strand.cable.geometry import build_geometry
+from strand.model.problem import StrandProblem
+from strand.model.same_layer import same_layer_pairs
 from strand.solver.ordering import ORDERINGS, pattern_lu
 from strand.solver.terms import create_extended_matrix
 

@@ -12,10 +12,10 @@ import time
 
 from mpi4py import MPI
 
-from strand.case import load_case
-from strand.cli import mesh_table
-from strand.geometry import build_geometry
-from strand.mesh import beam_space, cable_mesh
+from strand.app.case import load_case
+from strand.app.cli import mesh_table
+from strand.cable.geometry import build_geometry
+from strand.cable.mesh import beam_space, cable_mesh
 
 
 def main(case_file=None, repeats: int = 5) -> None:
@@ -41,7 +41,7 @@ def main(case_file=None, repeats: int = 5) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(sys.argv[1] if len(sys.argv) > 1 else None)

@@ -16,10 +16,10 @@ import resource
 import sys
 import time
 
-from strand.cable import cardinal
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.problem import StrandProblem
+from strand.cable.description import cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
 
@@ -70,7 +70,7 @@ def main(normal: str = "director", length: float = 1.0) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(sys.argv[1:2] or ["director"]), *[float(a) for a in sys.argv[2:3]])

@@ -26,9 +26,9 @@ import time
 
 from petsc4py import PETSc
 
-from strand.build import build_problem
-from strand.case import load_case
-from strand.checkpoint import read_checkpoint, restore
+from strand.app.build import build_problem
+from strand.app.case import load_case
+from strand.model.checkpoint import read_checkpoint, restore
 
 LOADS = (250.0, 437.5, 578.125, 718.75)
 VARIANTS = {

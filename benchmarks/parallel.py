@@ -46,11 +46,11 @@ def variants(quick: bool) -> list[tuple[str, int, list[str]]]:
 
 def worker(folder: str, settings: list[str]) -> None:
     """One run (under mpirun for several ranks); rank 0 writes ``timings.json``."""
-    from strand.case import load_case
-    from strand.parallel import abort_on_error
+    from strand.app.case import load_case
+    from strand.model.parallel import abort_on_error
 
     abort_on_error()  # an error on one rank ends both (else the other waits for ever)
-    from strand.run import run_case
+    from strand.app.run import run_case
 
     comm = MPI.COMM_WORLD
     case = load_case(None, [*settings, "output.plots=false"])

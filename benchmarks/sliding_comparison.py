@@ -21,12 +21,12 @@ import sys
 import time
 from pathlib import Path
 
-from strand.cable import Cable, cardinal
-from strand.compare import difference_table, overlay_figure
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.post import cell_results
-from strand.problem import StrandProblem
+from strand.app.compare import difference_table, overlay_figure
+from strand.cable.description import Cable, cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.post import cell_results
+from strand.model.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
 
@@ -99,7 +99,7 @@ def main(which: str = "helix", p_max: float | None = None, length: float | None 
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:4]])

@@ -72,8 +72,8 @@ def run_variant(name: str, quick: bool) -> dict:
     """Run one variant in this process; returns its measurements."""
     from petsc4py import PETSc
 
-    from strand.case import load_case
-    from strand.run import run_case
+    from strand.app.case import load_case
+    from strand.app.run import run_case
 
     PETSc.Log.begin()
     settings = VARIANTS[name][0]
@@ -174,7 +174,7 @@ def compare(names: list[str], reference: str) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     if "--one" not in sys.argv:
         serial_only("this benchmark (it launches its 2-rank variant itself)")

@@ -26,7 +26,7 @@ import numpy as np
 from mpi4py import MPI
 
 from strand.contact.group import PairGroup
-from strand.model import StrandModel
+from strand.model.model import StrandModel
 from strand.solver import LoadStepper
 
 WINDOW = [
@@ -115,8 +115,8 @@ def _patch() -> None:
 
 
 def main(settings: list[str], case_file: str | None) -> None:
-    from strand.case import load_case
-    from strand.run import run_case
+    from strand.app.case import load_case
+    from strand.app.run import run_case
 
     _patch()
     comm = MPI.COMM_WORLD

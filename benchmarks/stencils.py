@@ -21,11 +21,11 @@ import time
 
 import numpy as np
 
-from strand.build import build_problem
-from strand.case import load_case
-from strand.parallel import serial_only
-from strand.post import cell_results
-from strand.programme import run_programme
+from strand.app.build import build_problem
+from strand.app.case import load_case
+from strand.model.parallel import serial_only
+from strand.model.post import cell_results
+from strand.model.programme import run_programme
 
 CASE = ["mesh.length=0.3", "load.cycle=[1.0]"]
 #: ``[contact] same_layer_stencil``

@@ -4,14 +4,14 @@ Run: .venv/bin/python benchmarks/stick_bending.py [strand ...] [--length L] [--s
 [--same-layer S ...]
 Strands: "19" (Cardinal's core and layers 1–2, 0.3 m, 10 kN) and "cardinal" (0.6 m, 40 kN), each
 with its own friction and Hertz + Mindlin contact. For each slip measure (surface, centreline:
-``strand.contact.element``) and same-layer setting (off, nominal, packed: ``strand.same_layer``)
-it loads the uniform bending test monotonically through κ = 0.002, 0.01, 0.05, 0.1, 0.25, 0.5
-1/m (nominal end curvature) and prints, one row per variant: the smeared estimate's stick slope
-with the spin free (``strand.analytical.stick_bending_estimate``), the first step's M/κ over
-EI_max, the zone moment M at each curvature beside the stick–slip law (cumulative pressure), the
-slip onset per interface (the first of those κ at which 10 % of the interface's pairs in the
-measuring zone slip; ">" none by 0.5), the share of same-layer pairs closed at the first step,
-and the cost (wall time and Newton iterations, failed ones included). Loop areas need a full
+``strand.contact.element``) and same-layer setting (off, nominal, packed:
+``strand.model.same_layer``) it loads the uniform bending test monotonically through κ = 0.002,
+0.01, 0.05, 0.1, 0.25, 0.5 1/m (nominal end curvature) and prints, one row per variant: the smeared
+estimate's stick slope with the spin free (``strand.analytical.stick_bending_estimate``), the first
+step's M/κ over EI_max, the zone moment M at each curvature beside the stick–slip law (cumulative
+pressure), the slip onset per interface (the first of those κ at which 10 % of the interface's pairs
+in the measuring zone slip; ">" none by 0.5), the share of same-layer pairs closed at the first
+step, and the cost (wall time and Newton iterations, failed ones included). Loop areas need a full
 cycle and are not measured here (the bending case's summary gives them). Prints the machine,
 commit and command first; a variant that stops prints why.
 """
@@ -31,11 +31,11 @@ from pathlib import Path
 import numpy as np
 
 from strand.analytical import StickSlipLaw, stick_bending_estimate
-from strand.cable import Cable, cardinal
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.post import bending_stiffness_bounds, cell_results
-from strand.problem import StrandProblem
+from strand.cable.description import Cable, cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.post import bending_stiffness_bounds, cell_results
+from strand.model.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
 

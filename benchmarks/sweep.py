@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from strand.case import load_case
-from strand.run import run_case, run_sweep
+from strand.app.case import load_case
+from strand.app.run import run_case, run_sweep
 
 ROOT = Path("results/benchmark_sweep")
 
@@ -54,7 +54,7 @@ def main(length: float = 0.25, n: int = 10) -> None:
 
 
 if __name__ == "__main__":
-    from strand.parallel import serial_only
+    from strand.model.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]

@@ -95,7 +95,7 @@ def measures(problem) -> dict:
     """The results compared between variants, at a stage's end: midspan deflection and end
     displacement (m), every element's axial force (N, the geometry's order), and the normal
     force of every contact pair and same-layer pair (N, the geometry's order)."""
-    from strand.post import cell_results
+    from strand.model.post import cell_results
 
     m = problem.model
     s = problem.setup.state()
@@ -115,9 +115,9 @@ def run_variant(name: str, quick: bool) -> dict:
     from mpi4py import MPI
     from petsc4py import PETSc
 
-    from strand.build import build_problem, step_control
-    from strand.case import load_case
-    from strand.programme import run_programme
+    from strand.app.build import build_problem, step_control
+    from strand.app.case import load_case
+    from strand.model.programme import run_programme
 
     comm = MPI.COMM_WORLD
     PETSc.Log.begin()

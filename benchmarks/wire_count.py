@@ -10,12 +10,12 @@ that those of other settings stay apart)
 The strands: all-steel spiral strands 1+6, 1+6+12, … , 1+6+12+18+24+30+36 (7, 19, 37, 61, 91,
 127 wires), every wire 3 mm (a mooring spiral strand's wire size), E = 200 GPa, ν = 0.3, every
 layer at 14° to the axis, hands alternating with the outer layer right-hand (Z), layer radii from
-wires touching the layer below (``strand.cable``), Coulomb friction 0.2 (lubricated steel) at
-every interface and between the wires of each layer. Equal wires leave layer k (6k wires on the
-radius k d) a circumferential fill 3/(π cos α), whatever k: 0.984 at 14°, and at 17.3° they
+wires touching the layer below (``strand.cable.description``), Coulomb friction 0.2 (lubricated
+steel) at every interface and between the wires of each layer. Equal wires leave layer k (6k wires
+on the radius k d) a circumferential fill 3/(π cos α), whatever k: 0.984 at 14°, and at 17.3° they
 would overlap. The helices of layer 1 come 69 µm closer than touching (as in every 1+6 of equal
-wires, Cardinal's too; ``strand.same_layer`` takes them as touching); layers 2–6 leave 19–45 µm
-between neighbours. Minimum breaking strength MBS = Σ wire areas × 1770 MPa (the wires' tensile
+wires, Cardinal's too; ``strand.model.same_layer`` takes them as touching); layers 2–6 leave 19–45
+µm between neighbours. Minimum breaking strength MBS = Σ wire areas × 1770 MPa (the wires' tensile
 strength).
 
 The programme, one for all once scaled by each strand's MBS: the saddle test (the default kind),
@@ -81,7 +81,7 @@ LATERAL_SHARE = 0.1  # of the tension
 SIZES = (7, 19, 37, 61, 91, 127)
 LENGTH = 0.2  # m
 QUICK_SIZES, QUICK_LENGTH = (7, 19), 0.06
-#: the MUMPS settings of a distributed run (``strand.problem.StrandProblem``): PORD ordering,
+#: the MUMPS settings of a distributed run (``strand.model.problem.StrandProblem``): PORD ordering,
 #: twice the workspace estimate
 RUN_ICNTL = {7: 4, 14: 100}
 #: MUMPS's analysis variants of the probe: name: ICNTL values over ``RUN_ICNTL``
@@ -108,7 +108,7 @@ def layers_of(wires: int) -> int:
 
 
 def strand_cable(wires: int) -> dict:
-    """The cable table (``strand.cable.cable_from_dict``) of the steel spiral strand."""
+    """The cable table (``strand.cable.description.cable_from_dict``) of the steel spiral strand."""
     n = layers_of(wires)
     wire = {"diameter": WIRE_DIAMETER, **STEEL}
     layers = [
@@ -128,7 +128,7 @@ def breaking_strength(wires: int) -> float:
 def case_for(wires: int, length: float, settings: list[str]):
     """The case of the strand of ``wires`` over ``length`` (m), its loads scaled by its MBS;
     ``settings`` (``section.key=value``) over them."""
-    from strand.case import case_from_dict, parse_settings
+    from strand.app.case import case_from_dict, parse_settings
 
     mbs = breaking_strength(wires)
     tension = TENSION_SHARE * mbs
@@ -171,13 +171,13 @@ def worker(wires: int, length: float, folder: Path, settings: list[str]) -> None
     from mpi4py import MPI
     from petsc4py import PETSc
 
-    from strand.parallel import abort_on_error
+    from strand.model.parallel import abort_on_error
 
     abort_on_error()  # an error on one rank ends both (else the other waits for ever)
 
-    from strand.build import build_problem, results_folder
-    from strand.parallel import root_stream
-    from strand.runner import run_programme_with_outputs
+    from strand.app.build import build_problem, results_folder
+    from strand.app.runner import run_programme_with_outputs
+    from strand.model.parallel import root_stream
 
     comm = MPI.COMM_WORLD
     PETSc.Log.begin()
@@ -258,7 +258,7 @@ def analysis_probe(wires: int, length: float, out: Path, settings: list[str]) ->
     from mpi4py import MPI
     from petsc4py import PETSc
 
-    from strand.build import build_problem
+    from strand.app.build import build_problem
 
     PETSc.Log.begin()
     case = case_for(wires, length, settings)
@@ -451,7 +451,7 @@ if __name__ == "__main__":
     elif sys.argv[1:2] == ["--probe"]:
         analysis_probe(int(sys.argv[2]), float(sys.argv[3]), Path(sys.argv[4]), sys.argv[5:])
     else:
-        from strand.parallel import serial_only
+        from strand.model.parallel import serial_only
 
         serial_only("this benchmark (it launches its 2-rank runs itself)")
         parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])

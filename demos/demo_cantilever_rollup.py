@@ -30,11 +30,17 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam, moment_virtual_work
-from strand.mesh import beam_space, straight_beam_mesh
-from strand.output import FieldWriter
-from strand.parallel import serial_only
-from strand.plots import offscreen_plotter, save, tubes
-from strand.solver import LoadStepper, NonlinearProblem
+from strand import (
+    FieldWriter,
+    LoadStepper,
+    NonlinearProblem,
+    beam_space,
+    offscreen_plotter,
+    serial_only,
+    straight_beam_mesh,
+    tubes,
+)
+from strand.cable.pictures import save
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 

@@ -47,17 +47,20 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.contact import (
+from strand import (
     ElasticSlip,
+    LoadStepper,
+    NodalLoad,
+    NonlinearProblem,
     PenaltyLaw,
+    beam_space,
     candidate_pairs,
     candidate_stencils,
     contact_terms,
     locate_nodes,
+    polyline_mesh,
+    slab_partitioner,
 )
-from strand.mesh import beam_space, polyline_mesh
-from strand.partition import slab_partitioner
-from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
 
 comm = MPI.COMM_WORLD
 

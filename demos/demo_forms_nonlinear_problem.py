@@ -30,10 +30,8 @@ from dolfinx.fem.petsc import NonlinearProblem
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.mesh import beam_space, straight_beam_mesh
-from strand.parallel import serial_only
-from strand.solver import NewtonOptions, NodalLoad
-from strand.solver import NonlinearProblem as StrandNonlinearProblem
+from strand import NewtonOptions, NodalLoad, beam_space, serial_only, straight_beam_mesh
+from strand import NonlinearProblem as StrandNonlinearProblem
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 

@@ -44,10 +44,18 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.contact import ElasticSlip, LinePenaltyLaw, candidate_pairs, contact_terms, locate_nodes
-from strand.mesh import beam_space, polyline_mesh
-from strand.parallel import serial_only
-from strand.solver import LoadStepper, NonlinearProblem
+from strand import (
+    ElasticSlip,
+    LinePenaltyLaw,
+    LoadStepper,
+    NonlinearProblem,
+    beam_space,
+    candidate_pairs,
+    contact_terms,
+    locate_nodes,
+    polyline_mesh,
+    serial_only,
+)
 
 serial_only("this demo")  # it reads nodes by their local index: one process
 

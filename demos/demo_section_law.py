@@ -46,9 +46,7 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam, moment_virtual_work
-from strand.mesh import beam_space, straight_beam_mesh
-from strand.parallel import serial_only
-from strand.solver import LoadStepper, NonlinearProblem
+from strand import LoadStepper, NonlinearProblem, beam_space, serial_only, straight_beam_mesh
 
 serial_only("this demo")  # it reads the tip's unknowns by their local index: one process
 

@@ -34,10 +34,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from strand.case import case_from_dict
-from strand.parallel import is_root
-from strand.post import bending_stiffness_bounds, fibre_model
-from strand.run import run_case
+from strand import bending_stiffness_bounds, fibre_model, is_root
+from strand.app.case import case_from_dict
+from strand.app.run import run_case
 
 rank0 = is_root()
 
@@ -103,7 +102,7 @@ for layer, expected in enumerate(reference["wire_force"]):
 # back to zero: a hysteresis loop. This run writes no fields and no fatigue histories: its tables
 # and figures are all we look at.
 
-cable = tomllib.loads((resources.files("strand.data") / "cardinal.toml").read_text())
+cable = tomllib.loads((resources.files("strand.cable.data") / "cardinal.toml").read_text())
 for table in (cable["core"], *cable["layer"]):
     table["friction"] = 0.05
 quiet = {"output": {"fields": False}, "fatigue": {"outputs": False}}

@@ -1,3 +1,3 @@
-from strand.cli import main
+from strand.app.cli import main
 
 raise SystemExit(main())

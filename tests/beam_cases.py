@@ -11,7 +11,7 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam, moment_virtual_work
-from strand.mesh import beam_space, straight_beam_mesh
+from strand.cable.mesh import beam_space, straight_beam_mesh
 from strand.solver import NewtonOptions, NonlinearProblem
 
 D, E, NU = 0.01, 210e9, 0.3  # m, Pa, -

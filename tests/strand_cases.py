@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from strand.cable import cable_from_dict, cardinal
-from strand.folder import RUN_MARKER
-from strand.geometry import StrandGeometry, build_geometry
+from strand.app.folder import RUN_MARKER
+from strand.cable.description import cable_from_dict, cardinal
+from strand.cable.geometry import StrandGeometry, build_geometry
 
 #: a quick 1+6 case file (0.1 m of strand, no plots)
 SEVEN_WIRE = """

@@ -9,11 +9,17 @@ from scipy.spatial.transform import Rotation
 
 from beam_cases import NU, D, E, cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
-from strand.cable import cardinal
-from strand.geometry import build_geometry
-from strand.mesh import beam_space, cable_mesh, node_to_block, polyline_mesh, straight_beam_mesh
-from strand.model import layer_section
-from strand.output import section_force_values
+from strand.cable.description import cardinal
+from strand.cable.geometry import build_geometry
+from strand.cable.mesh import (
+    beam_space,
+    cable_mesh,
+    node_to_block,
+    polyline_mesh,
+    straight_beam_mesh,
+)
+from strand.model.fields import section_force_values
+from strand.model.model import layer_section
 from strand.solver import LoadStepper
 
 S = section_stiffness()
@@ -227,7 +233,7 @@ def test_beam_forms_refuse_what_they_are_not_written_for(case):
         w = fem.Function(fem.functionspace(m, ("Lagrange", 1, (6,))))
         message = "need a 1D mesh in 3D .* got a 1D mesh in 1D"
     else:
-        from strand.mesh import straight_beam_mesh
+        from strand.cable.mesh import straight_beam_mesh
 
         m = straight_beam_mesh(MPI.COMM_WORLD, 1.0, 4)
         w = fem.Function(fem.functionspace(m, ("Lagrange", 1)))

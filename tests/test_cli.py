@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from strand import __version__
-from strand.case import CaseError, load_case
-from strand.cli import main
+from strand.app.case import CaseError, load_case
+from strand.app.cli import main
 from strand_cases import SEVEN_WIRE, contents, earlier_run, one_line_error
 
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")

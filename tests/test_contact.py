@@ -8,7 +8,9 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
-from strand.cable import CableError
+from strand.cable.description import CableError
+from strand.cable.geometry import LINE, POINT
+from strand.cable.mesh import beam_space, input_to_block, polyline_mesh
 from strand.contact.element import ContactGroup
 from strand.contact.hertz import compliance as compliance_of
 from strand.contact.hertz import mindlin_ratio, point_coefficient
@@ -26,13 +28,11 @@ from strand.contact.laws import (
     Mindlin,
     PenaltyLaw,
 )
-from strand.contact_settings import ContactSettings
-from strand.geometry import LINE, POINT
-from strand.mesh import beam_space, input_to_block, polyline_mesh
-from strand.problem import StrandProblem
+from strand.model.contact_settings import ContactSettings
+from strand.model.problem import StrandProblem
+from strand.model.strand_contact import centreline_gaps
 from strand.setups.saddle import saddle_weights
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NodalLoad, NonlinearProblem
-from strand.strand_contact import centreline_gaps
 from strand_cases import check_state_and_tangent, nineteen_wire, seven_wire
 
 R_A, R_B = 1.5e-3, 2.0e-3  # m
@@ -527,7 +527,7 @@ def test_contact_settings_reject_bad_input():
         ContactSettings(compliance="stiff")
     with pytest.raises(CableError, match="slip 'centre' is unknown; choose surface or centreline"):
         ContactSettings(slip="centre")
-    from strand.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
+    from strand.app.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
 
     with pytest.raises(CaseError, match=r"unknown setting\(s\) in \[contact\]: \['kn'\]"):
         case_from_dict({"contact": {"kn": 1}})

@@ -8,6 +8,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
+from strand.cable.mesh import beam_space, polyline_mesh
 from strand.contact import (
     ContactError,
     ElasticSlip,
@@ -22,7 +23,6 @@ from strand.contact import (
     sliding_terms,
 )
 from strand.contact.hertz import point_coefficient
-from strand.mesh import beam_space, polyline_mesh
 from strand.solver import NewtonOptions, NodalLoad, NonlinearProblem
 
 R = 1.5e-3  # m, both beams

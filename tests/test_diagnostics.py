@@ -1,6 +1,6 @@
-"""The wires' spin and torque (``strand.post.section_spin``, ``section_torque``, ``cell_results``)
-against closed forms, the per-layer fits against φ (``layer_fields``), and the uniform bending
-summary's table of them beside the rolling estimate."""
+"""The wires' spin and torque (``strand.model.post.section_spin``, ``section_torque``,
+``cell_results``) against closed forms, the per-layer fits against φ (``layer_fields``), and the
+uniform bending summary's table of them beside the rolling estimate."""
 
 from __future__ import annotations
 
@@ -9,11 +9,11 @@ import pytest
 from dolfinx import fem
 
 from beam_cases import cantilever, section_stiffness
-from strand.case import load_case
-from strand.history import read_history
-from strand.model import StrandModel
-from strand.post import cell_results, harmonic_fit, layer_fields, section_spin, section_torque
-from strand.run import run_case
+from strand.app.case import load_case
+from strand.app.history import read_history
+from strand.app.run import run_case
+from strand.model.model import StrandModel
+from strand.model.post import cell_results, harmonic_fit, layer_fields, section_spin, section_torque
 from strand_cases import SEVEN_WIRE, seven_wire
 
 

@@ -51,7 +51,7 @@ def test_every_module_has_an_api_page():
     missing = []
     for path in [*ROOT.glob("strand/**/*.py"), *ROOT.glob("forms/*.py")]:
         module = ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
-        if module in ("strand", "strand.__main__", "strand.data"):
+        if module in ("strand", "strand.__main__", "strand.cable.data"):
             continue
         parent = module.rpartition(".")[0]
         if module not in documented and (parent == "strand" or parent not in documented):
@@ -60,9 +60,8 @@ def test_every_module_has_an_api_page():
 
 
 def test_the_settings_reference_lists_every_setting_with_its_default(built):
-    from strand.case import SECTIONS
-    from strand.kinds import registered
-    from strand.settings import KIND_SECTIONS
+    from strand.app.kinds import registered
+    from strand.app.settings import KIND_SECTIONS, SECTIONS
 
     page = (built / "_generated" / "settings.html").read_text()
     for section, cls in SECTIONS.items():
@@ -77,7 +76,7 @@ def test_the_settings_reference_lists_every_setting_with_its_default(built):
 
 
 def test_the_outputs_reference_names_every_file_a_run_writes():
-    from strand.run_files import OUTPUTS
+    from strand.app.run_files import OUTPUTS
 
     text = (DOCS / "outputs.md").read_text()
     assert [name for name in OUTPUTS if f"`{name}`" not in text] == []
@@ -120,7 +119,7 @@ def test_the_repository_cites_its_own_theory_pages():
             "tests/*.py",
             "demos/*.py",
             "*.md",
-            "strand/data/*.toml",
+            "strand/cable/data/*.toml",
         )  # fmt: skip
         for p in ROOT.glob(pattern)
         if p.name != "test_docs.py"

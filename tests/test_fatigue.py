@@ -15,8 +15,10 @@ from mpi4py import MPI
 from beam_cases import cantilever
 from forms import CircularSection, ReissnerBeam
 from strand.analytical import ei_min, poffenberger_swart
-from strand.cable import cardinal
-from strand.cli import main
+from strand.app.cli import main
+from strand.app.history import read_history
+from strand.cable.description import cardinal
+from strand.cable.mesh import beam_space, polyline_mesh
 from strand.contact import ElasticSlip, PenaltyLaw, candidate_pairs, contact_terms, locate_nodes
 from strand.contact.hertz import compliance, contact_ellipse, crossed_cylinders
 from strand.fatigue import (
@@ -30,8 +32,6 @@ from strand.fatigue import (
     surface_stress,
 )
 from strand.fatigue.cycles import cycle_steps, repeating_cycles
-from strand.history import read_history
-from strand.mesh import beam_space, polyline_mesh
 from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
 from strand_cases import SEVEN_WIRE
 

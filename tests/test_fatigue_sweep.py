@@ -1,4 +1,4 @@
-"""A sweep answers the fatigue question per amplitude (``strand.sweep.fatigue_columns``): the
+"""A sweep answers the fatigue question per amplitude (``strand.app.sweep.fatigue_columns``): the
 largest surface stress range per layer and zone, the worst crossing's F₂ and slip amplitude, the
 largest damage and Poffenberger–Swart's ratio, each column named with its unit."""
 
@@ -9,8 +9,8 @@ import io
 
 import numpy as np
 
-from strand.case import load_case
-from strand.run import run_sweep
+from strand.app.case import load_case
+from strand.app.run import run_sweep
 from strand_cases import SEVEN_WIRE
 
 UNITS = ("_MPa", "_MPa_J_per_m2", "_um")

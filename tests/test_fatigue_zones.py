@@ -12,8 +12,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from strand.cable import cardinal
-from strand.cli import main
+from strand.app.cli import main
+from strand.app.fatigue.report import fatigue_report
+from strand.app.fatigue.tension_check import strand_tension
+from strand.app.history import read_history
+from strand.app.settings import FatigueSettings
+from strand.cable.description import cardinal
 from strand.fatigue import (
     SN_CURVES,
     api_spiral_strand_life,
@@ -24,10 +28,6 @@ from strand.fatigue import (
     span_error,
     stuck_throughout,
 )
-from strand.fatigue_report import fatigue_report
-from strand.history import read_history
-from strand.settings import FatigueSettings
-from strand.tension_check import strand_tension
 from strand_cases import SEVEN_WIRE, seven_wire
 
 

@@ -1,12 +1,12 @@
-"""The results-folder rules (``strand.folder``): a folder never holds two runs' files, an earlier
-run's are replaced only when asked, a folder of other files is never written into. The command
-line applies them through ``prepare_results_folder`` (end to end: tests/test_cli.py)."""
+"""The results-folder rules (``strand.app.folder``): a folder never holds two runs' files, an
+earlier run's are replaced only when asked, a folder of other files is never written into. The
+command line applies them through ``prepare_results_folder`` (end to end: tests/test_cli.py)."""
 
 from __future__ import annotations
 
 import pytest
 
-from strand.folder import RUN_MARKER, FolderError, prepare_results_folder
+from strand.app.folder import RUN_MARKER, FolderError, prepare_results_folder
 from strand_cases import contents, earlier_run
 
 

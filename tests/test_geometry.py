@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from strand.cable import CableError, cable_from_dict, cardinal, load_cable
-from strand.case import CaseError, load_case
-from strand.geometry import LINE, POINT, build_geometry
-from strand.mesh import beam_space, cable_mesh, node_to_block
+from strand.app.case import CaseError, load_case
+from strand.cable.description import CableError, cable_from_dict, cardinal, load_cable
+from strand.cable.geometry import LINE, POINT, build_geometry
+from strand.cable.mesh import beam_space, cable_mesh, node_to_block
 
 
 @pytest.fixture(scope="module")
@@ -170,7 +170,7 @@ def test_cable_and_case_files(tmp_path):
 
 
 def test_strand_mesh_command(tmp_path, capsys):
-    from strand.cli import main
+    from strand.app.cli import main
 
     case = tmp_path / "case.toml"
     case.write_text('cable = "cardinal"\n[mesh]\nlength = 0.1\n')
@@ -188,7 +188,7 @@ def test_gmsh_model_comes_in_like_strands_own_mesh():
     """A 1D gmsh model with a physical group per wire gives the same mesh, tags and pair nodes."""
     gmsh = pytest.importorskip("gmsh")  # the optional `gmsh` extra
 
-    from strand.mesh import geometry_to_gmsh, input_to_block, mesh_from_gmsh
+    from strand.cable.mesh import geometry_to_gmsh, input_to_block, mesh_from_gmsh
 
     g = build_geometry(cardinal(), 0.05, 4e-3)
     gmsh.initialize(["-v", "0"])

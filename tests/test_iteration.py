@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from strand.case import CaseError, load_case
-from strand.run import build_problem
+from strand.app.case import CaseError, load_case
+from strand.app.run import build_problem
 from strand.solver import LoadStepper, NewtonOptions
 from strand_cases import SEVEN_WIRE
 

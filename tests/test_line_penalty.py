@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
+from strand.cable.mesh import beam_space, polyline_mesh
 from strand.contact import (
     ElasticSlip,
     LinePenaltyLaw,
@@ -15,7 +16,6 @@ from strand.contact import (
     contact_terms,
     locate_nodes,
 )
-from strand.mesh import beam_space, polyline_mesh
 
 R = 1.5e-3  # m, both beams
 K_LINE = 5e9  # N/m²

@@ -1,4 +1,4 @@
-"""A mesh of more than ``strand.build.LARGE_MESH`` elements is announced before it is built: one
+"""A mesh of more than ``strand.app.build.LARGE_MESH`` elements is announced before it is built: one
 line with its elements, unknowns and a rough memory estimate (the threshold lowered here so
 that the quick 1+6 case passes it)."""
 
@@ -9,10 +9,10 @@ import re
 
 import pytest
 
-import strand.build
-from strand.build import BYTES_PER_UNKNOWN, build_problem
-from strand.case import load_case
-from strand.geometry import build_geometry
+import strand.app.build
+from strand.app.build import BYTES_PER_UNKNOWN, build_problem
+from strand.app.case import load_case
+from strand.cable.geometry import build_geometry
 from strand_cases import SEVEN_WIRE
 
 
@@ -27,12 +27,12 @@ def announced(tmp_path, monkeypatch, threshold: int | None) -> tuple[str, object
     path.write_text(SEVEN_WIRE)
     case = load_case(path)
     if threshold is not None:
-        monkeypatch.setattr(strand.build, "LARGE_MESH", threshold)
+        monkeypatch.setattr(strand.app.build, "LARGE_MESH", threshold)
 
     def no_build(*args, **kwargs):
         raise Built
 
-    monkeypatch.setattr(strand.build, "StrandProblem", no_build)
+    monkeypatch.setattr(strand.app.build, "StrandProblem", no_build)
     stream = io.StringIO()
     with pytest.raises(Built):
         build_problem(case, stream)

@@ -1,7 +1,7 @@
 """The built-in all-steel spiral strand ``judge120`` (issue 29, item 7): the 120-wire strand of
 Judge et al. (2012), Construction and Building Materials 35, 452–459, as transcribed by RTE's
-pallas-stranded-cable (strand/data/judge120.toml names both). The numbers below are typed from that
-transcription, not read from the data file: the data file is checked against them, its stated
+pallas-stranded-cable (strand/cable/data/judge120.toml names both). The numbers below are typed from
+that transcription, not read from the data file: the data file is checked against them, its stated
 assumptions against what they change, and the mooring case against its comments; one cheap run
 of the case writes the wire-level versus T–N comparison."""
 
@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 from strand.analytical.costello import costello_stiffness
-from strand.cable import CableError, cable_from_dict, judge120
-from strand.case import load_case
-from strand.cli import main
-from strand.post import fibre_model
+from strand.app.case import load_case
+from strand.app.cli import main
+from strand.cable.description import CableError, cable_from_dict, judge120
+from strand.model.post import fibre_model
 
 CASE = Path(__file__).parents[1] / "cases" / "mooring_judge120.toml"
 

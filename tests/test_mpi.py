@@ -16,11 +16,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from strand.cable import cardinal
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.model import strand_stencils
-from strand.partition import DistributionError, owned_rows, slab_destinations
+from strand.cable.description import cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.model import strand_stencils
+from strand.model.partition import DistributionError, owned_rows, slab_destinations
 from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 #: relative agreement (to each column's largest value) required of a distributed run
@@ -97,7 +97,7 @@ def _run_and_compare(
 def test_seven_wire_saddle_is_the_same_on_1_2_and_3_ranks(seven_wire):
     out = _run_and_compare(seven_wire, ["seven.toml"], tag="saddle")
     # the fatigue histories and the fields, written from rank 0 and collectively
-    from strand.history import read_history
+    from strand.app.history import read_history
 
     for n in (2, 3):
         a, b = (read_history(out[k] / "contact_pairs.h5") for k in (1, n))
@@ -270,7 +270,7 @@ import strand
 import numpy as np
 from mpi4py import MPI
 from strand.contact import ContactError, candidate_pairs, locate_nodes
-from strand.mesh import beam_space, polyline_mesh
+from strand.cable.mesh import beam_space, polyline_mesh
 from strand.solver import NodalLoad, NonlinearProblem
 from forms import CircularSection, ReissnerBeam
 from dolfinx import fem
@@ -335,7 +335,7 @@ def test_an_error_on_one_rank_ends_every_rank(tmp_path):
     its next collective call for ever."""
     script = tmp_path / "fails_on_root.py"
     script.write_text(
-        "import strand\nfrom mpi4py import MPI\nfrom strand.parallel import abort_on_error\n"
+        "import strand\nfrom mpi4py import MPI\nfrom strand.model.parallel import abort_on_error\n"
         "abort_on_error()\n"
         "if MPI.COMM_WORLD.rank == 0:\n    raise KeyError('only on rank 0')\n"
         "MPI.COMM_WORLD.barrier()\n"

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from strand.plots import magnification
+from strand.app.plots import magnification
 
 
 @pytest.mark.parametrize("largest", [1e-7, 3.3e-6, 4e-5, 1.2e-4, 9e-4, 2.4e-3])

@@ -1,6 +1,6 @@
-"""The strand's own reactions at both ends (``strand.reactions``, columns of steps.csv and lines of
-the summary): balance under tension alone, Costello's tension–torque coupling, and the uniform
-bending set-up's own end couples, computed there another way."""
+"""The strand's own reactions at both ends (``strand.model.reactions``, columns of steps.csv and
+lines of the summary): balance under tension alone, Costello's tension–torque coupling, and the
+uniform bending set-up's own end couples, computed there another way."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ import io
 import pytest
 
 from strand.analytical import held_end_torque
-from strand.case import load_case
-from strand.run import run_case
+from strand.app.case import load_case
+from strand.app.run import run_case
 from strand_cases import SEVEN_WIRE
 
 QUIET = ["output.fields=false", "fatigue.outputs=false"]

@@ -13,9 +13,9 @@ import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import pytest
 
-from strand.case import load_case
-from strand.programme import run_programme
-from strand.run import build_problem
+from strand.app.case import load_case
+from strand.app.run import build_problem
+from strand.model.programme import run_programme
 from strand.solver import LoadStepper
 from strand_cases import SEVEN_WIRE
 

@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from strand.case import load_case
-from strand.checkpoint import read_checkpoint, write_checkpoint
-from strand.cli import main
-from strand.run import build_problem, run_case, run_programme_with_outputs
+from strand.app.case import load_case
+from strand.app.cli import main
+from strand.app.run import build_problem, run_case, run_programme_with_outputs
+from strand.model.checkpoint import read_checkpoint, write_checkpoint
 from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 QUIET = ["output.plots=false", "output.fields=false", "fatigue.outputs=false"]

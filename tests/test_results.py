@@ -1,4 +1,4 @@
-"""A run's field series read back: ``strand.results.read_fields`` (meshio, PyVista) and, where
+"""A run's field series read back: ``strand.app.results.read_fields`` (meshio, PyVista) and, where
 Debian's ParaView is installed, ``pvpython``; the unloaded strand at t = 0, then every step at
 its ``steps.csv`` time, with the values and loads the run wrote there."""
 
@@ -12,8 +12,8 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from strand.cli import main
-from strand.results import read_fields
+from strand.app.cli import main
+from strand.app.results import read_fields
 from strand_cases import SEVEN_WIRE
 
 ARRAYS = {"displacement", "rotation", "force", "moment", "axial_force", "wire", "layer"}

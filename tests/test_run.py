@@ -8,12 +8,12 @@ import tomllib
 import numpy as np
 import pytest
 
-from strand.cable import cardinal
-from strand.case import CaseError, load_case
-from strand.cli import main
+from strand.app.case import CaseError, load_case
+from strand.app.cli import main
+from strand.cable.description import cardinal
 from strand.contact.element import ContactGroup
 from strand.contact.laws import PenaltyLaw
-from strand.post import bending_stiffness_bounds, fibre_model
+from strand.model.post import bending_stiffness_bounds, fibre_model
 from strand_cases import SEVEN_WIRE
 
 
@@ -117,10 +117,10 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
     the strand strain and the wire forces per layer are within 3 % of the fibre model (which takes
     the contacts as rigid); the seed paper's penalty adds about 5 % of strain, the default Hertz
     compliance 6 %."""
-    from strand.case import case_from_dict
-    from strand.geometry import build_geometry
-    from strand.post import cell_results
-    from strand.problem import StrandProblem
+    from strand.app.case import case_from_dict
+    from strand.cable.geometry import build_geometry
+    from strand.model.post import cell_results
+    from strand.model.problem import StrandProblem
     from strand.solver import LoadStepper, NewtonOptions
 
     case = case_from_dict(
@@ -166,8 +166,8 @@ def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
 def test_small_sliding_check_against_its_closed_form():
     """Crossing nodes moved round the strand by s: gap drift s²/(2R) (R the outer layer's helix
     radius); moved along the axis, or all together: none; the warning names the interface."""
-    from strand.geometry import build_geometry
-    from strand.post import sliding_check
+    from strand.cable.geometry import build_geometry
+    from strand.model.post import sliding_check
 
     g = build_geometry(cardinal(), 0.1, 4e-3)
     p = g.pairs
@@ -202,7 +202,7 @@ def test_small_sliding_drift_is_the_elements_own_gap_drift(interface):
     turned with the helix): the contact element's gap (director normal) drifts by 70–100 % of
     s²/(2R), s the slide round the strand: the estimate the small-sliding check uses is an upper
     bound within 30 % (measured: 78 / 91 / 93 % at 1|2 / 2|3 / 3|4)."""
-    from strand.geometry import build_geometry
+    from strand.cable.geometry import build_geometry
 
     g = build_geometry(cardinal(), 0.4, 4e-3)
     p, layers = g.pairs, g.cable.layers
@@ -232,7 +232,7 @@ def test_small_sliding_drift_is_the_elements_own_gap_drift(interface):
 
 
 def test_programme_time_runs_one_unit_per_stage():
-    from strand.programme import LoadProgramme, Stage
+    from strand.model.programme import LoadProgramme, Stage
 
     stages = (Stage("tension", "tension", 40e3, 1.0, 0.1),
               *(Stage(f"leg {i}", "lateral", c, 1.0, 0.1) for i, c in enumerate((4e3, 0.0, -4e3))))  # fmt: skip
@@ -244,7 +244,7 @@ def test_programme_time_runs_one_unit_per_stage():
 def test_progress_weights_share_the_programme_also_when_the_cycle_stays_at_zero():
     """Progress shares sum to 1; a cycle that goes nowhere (``cycle = [0.0]``: tension only)
     leaves all of it to the tension instead of dividing by its zero path length."""
-    from strand.programme import LoadProgramme, Stage
+    from strand.model.programme import LoadProgramme, Stage
 
     tension = Stage("tension", "tension", 40e3, 10e3, 100.0)
     for targets, expected in [((1.0, 0.0, -1.0, 0.0), [0.1, 0.225, 0.225, 0.225, 0.225]),

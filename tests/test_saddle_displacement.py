@@ -1,6 +1,6 @@
 """Displacement-controlled saddle cycles (``[load] control = "displacement"``, issue 29 item 3):
 the midspan deflection or the conductor practice's Y_b is prescribed, every step finds the saddle
-load that gives it (``strand.setups.displacement_control``). The prescribed displacement is
+load that gives it (``strand.solver.displacement_control``). The prescribed displacement is
 reached to the stated tolerance, the force-controlled test at the loads found gives the same
 displacements back, the half-turn symmetry of the 1+6 holds exactly, sweeps run over displacement
 amplitudes, and bad settings are refused in one line."""
@@ -18,14 +18,14 @@ import numpy as np
 import pytest
 
 from strand.analytical import TensionedBeam
-from strand.case import CaseError, case_from_dict, load_case
-from strand.cli import main
-from strand.kinds.saddle import CONTROL_TOLERANCE
-from strand.post import bending_stiffness_bounds
-from strand.run import build_problem, run_programme_with_outputs
-from strand.setups.displacement_control import DisplacementControl
+from strand.app.case import CaseError, case_from_dict, load_case
+from strand.app.cli import main
+from strand.app.kinds.saddle import CONTROL_TOLERANCE
+from strand.app.run import build_problem, run_programme_with_outputs
+from strand.model.post import bending_stiffness_bounds
 from strand.setups.saddle import beam_compliance
 from strand.solver import LoadStepper, NewtonResult
+from strand.solver.displacement_control import DisplacementControl
 from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 QUIET = ["output.plots=false", "output.fields=false", "fatigue.outputs=false"]
@@ -295,7 +295,7 @@ def test_the_displacement_case_file_reads():
     """cases/quick_1x6_yb.toml: a Y_b of 1 mm at 89 mm on 0.3 m, the cycle in yb."""
     from pathlib import Path
 
-    from strand.kinds import kind_of
+    from strand.app.kinds import kind_of
 
     case = load_case(Path(__file__).parents[1] / "cases" / "quick_1x6_yb.toml")
     kind = kind_of(case)

@@ -1,5 +1,5 @@
-"""Contact between neighbouring wires of one layer (``strand.same_layer``): where they face each
-other, their gaps, and pairs that open and close on a tensioned 1+6."""
+"""Contact between neighbouring wires of one layer (``strand.model.same_layer``): where they face
+each other, their gaps, and pairs that open and close on a tensioned 1+6."""
 
 import csv
 import io
@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 
 from strand.analytical import held_end_torque
-from strand.cable import CableError, cable_from_dict, cardinal
-from strand.case import load_case
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.problem import StrandProblem
-from strand.programme import run_programme
-from strand.run import build_problem, run_case
-from strand.same_layer import helix_clearance, same_layer_pairs
+from strand.app.case import load_case
+from strand.app.run import build_problem, run_case
+from strand.cable.description import CableError, cable_from_dict, cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.problem import StrandProblem
+from strand.model.programme import run_programme
+from strand.model.same_layer import helix_clearance, same_layer_pairs
 from strand.setups.saddle import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 

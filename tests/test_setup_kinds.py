@@ -12,11 +12,11 @@ from functools import partial
 import numpy as np
 import pytest
 
-from strand import kinds
-from strand.case import CaseError, case_from_dict, load_case
-from strand.cli import main
-from strand.kinds import NoSettings, SetupKind
-from strand.post import fibre_model, section_resultants
+from strand.app import kinds
+from strand.app.case import CaseError, case_from_dict, load_case
+from strand.app.cli import main
+from strand.app.kinds import NoSettings, SetupKind
+from strand.model.post import fibre_model, section_resultants
 from strand.setups.base import quantity
 from strand.setups.saddle import SaddleTest
 from strand_cases import SEVEN_WIRE

@@ -8,8 +8,8 @@ import pytest
 
 from strand.contact.laws import ElasticSlip, PenaltyLaw
 from strand.contact.sliding import SlidingGroup, SlidingWindowError
-from strand.contact_settings import ContactSettings
-from strand.problem import StrandProblem
+from strand.model.contact_settings import ContactSettings
+from strand.model.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
@@ -201,9 +201,9 @@ def test_windows_reach_the_sliding_room_and_no_further():
     """Every pair's window covers ``reach`` of arc length either side of its node (or stops at the
     wire's end), and dropping its outermost segment would not: Cardinal has segments from 1 µm
     to 4 mm, so windows counted in segments would leave some pairs no room at all."""
-    from strand.cable import cardinal
-    from strand.geometry import build_geometry
-    from strand.strand_contact import wire_chains
+    from strand.cable.description import cardinal
+    from strand.cable.geometry import build_geometry
+    from strand.model.strand_contact import wire_chains
 
     geometry = build_geometry(cardinal(), 0.3)
     reach = 1e-3

@@ -9,19 +9,19 @@ import pytest
 from test_mpi import _run_and_compare
 from test_restart import QUIET, assert_continues, uninterrupted_with_checkpoint
 
-from strand.case import load_case
+from strand.app.case import load_case
+from strand.app.run import run_case
 from strand.contact.element import ContactGroup, centreline_slip_operator
 from strand.contact.group import tangential_part
 from strand.contact.kinematics import rotation_matrix, tangent_map
 from strand.contact.laws import ElasticSlip, PenaltyLaw, hertz_mindlin
 from strand.contact.sliding import SlidingGroup
-from strand.contact_settings import ContactSettings
-from strand.model import strand_stencils
-from strand.problem import StrandProblem
-from strand.run import run_case
-from strand.same_layer import facing_point_motion, same_layer_pairs
+from strand.model.contact_settings import ContactSettings
+from strand.model.model import strand_stencils
+from strand.model.problem import StrandProblem
+from strand.model.same_layer import facing_point_motion, same_layer_pairs
+from strand.model.strand_contact import same_layer_windows
 from strand.solver import LoadStepper, NewtonOptions
-from strand.strand_contact import same_layer_windows
 from strand_cases import SEVEN_WIRE, check_state_and_tangent, fd_tangent, needs_mpirun, seven_wire
 
 H = 3e-3  # m, segment length

@@ -11,7 +11,7 @@ from mpi4py import MPI
 
 from beam_cases import cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
-from strand.mesh import beam_space, input_to_block, polyline_mesh
+from strand.cable.mesh import beam_space, input_to_block, polyline_mesh
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NodalLoad, NonlinearProblem
 
 S = section_stiffness()

@@ -14,16 +14,16 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from strand.case import CaseError, case_from_dict, load_case
-from strand.cli import main
+from strand.app.case import CaseError, case_from_dict, load_case
+from strand.app.cli import main
+from strand.app.fatigue.load_history import history_spectrum
+from strand.app.fatigue.spectrum import spectrum_report, write_spectrum
+from strand.app.history import read_history
+from strand.app.run import run_sweep
 from strand.fatigue.cycles import rainflow_cycles, repeating_cycles
 from strand.fatigue.sn import SN_CURVES, miner_damage
 from strand.fatigue.spectrum import reduce_history, spectrum_damage
 from strand.fatigue.stress import surface_stress
-from strand.history import read_history
-from strand.load_history import history_spectrum
-from strand.run import run_sweep
-from strand.spectrum_report import spectrum_report, write_spectrum
 from strand_cases import SEVEN_WIRE, one_line_error
 
 ROOT = Path(__file__).parents[1]
@@ -157,7 +157,7 @@ def test_the_spectrum_supplies_the_sweep():
 def test_a_spectrum_case_reads_back_from_its_case_toml(tmp_path):
     """The case.toml a run writes holds the spectrum and the sweep it supplies, and reads back
     to the same case (floats bitwise)."""
-    from strand.case_toml import case_toml
+    from strand.app.case_toml import case_toml
 
     case = case_from_dict({"fatigue": {"spectrum": [[0.1, 3.0e6], [0.3, 1.5]]},
                            "load": {"kind": "bending"}}, source="test")  # fmt: skip

@@ -12,8 +12,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from strand.case import load_case
-from strand.run import build_problem, run_case
+from strand.app.case import load_case
+from strand.app.run import build_problem, run_case
 from strand.solver import ErrorControl, LoadStepper, NewtonResult, RampState
 from strand_cases import SEVEN_WIRE
 

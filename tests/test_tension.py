@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from strand.analytical import costello_stiffness
-from strand.cable import cardinal
-from strand.contact_settings import ContactSettings
-from strand.geometry import build_geometry
-from strand.post import cell_results, section_resultants
-from strand.problem import StrandProblem
+from strand.cable.description import cardinal
+from strand.cable.geometry import build_geometry
+from strand.model.contact_settings import ContactSettings
+from strand.model.post import cell_results, section_resultants
+from strand.model.problem import StrandProblem
 from strand.solver import LoadStepper, NewtonOptions
 
 TENSION, LENGTH = 10e3, 0.15  # N, m (1–2.3 lay lengths at 8–18°)

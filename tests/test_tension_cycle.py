@@ -13,11 +13,11 @@ import re
 import numpy as np
 import pytest
 
-from strand.case import CaseError, case_from_dict, load_case
-from strand.cli import main
-from strand.history import read_history
-from strand.post import fibre_model
-from strand.tension_check import strand_tension
+from strand.app.case import CaseError, case_from_dict, load_case
+from strand.app.cli import main
+from strand.app.fatigue.tension_check import strand_tension
+from strand.app.history import read_history
+from strand.model.post import fibre_model
 from strand_cases import SEVEN_WIRE
 
 MEAN, SWING = 10e3, 2e3  # N
@@ -205,7 +205,7 @@ def test_the_tension_cycle_case_file_reads_as_its_comments_say():
     the programme tension → saddle → legs to 13, 7 and 10 kN of end force."""
     from pathlib import Path
 
-    from strand.kinds import kind_of
+    from strand.app.kinds import kind_of
 
     case = load_case(Path(__file__).parents[1] / "cases" / "quick_1x6_tension_cycle.toml")
     kind = kind_of(case)

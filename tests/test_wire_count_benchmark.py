@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from strand.cable import cable_from_dict
+from strand.cable.description import cable_from_dict
 
 SCRIPT = Path(__file__).parents[1] / "benchmarks" / "wire_count.py"
 

@@ -64,8 +64,8 @@ def _comments(cls) -> dict[str, str]:
 
 
 def _template_comments(doc: str) -> dict[tuple[str, str], str]:
-    """The comments of the commented case file in ``strand.case``'s docstring, by (section, key):
-    the comment on the key's line and the comment lines indented under it."""
+    """The comments of the commented case file in ``strand.app.case``'s docstring, by (section,
+    key): the comment on the key's line and the comment lines indented under it."""
     out: dict[tuple[str, str], str] = {}
     section, key = "", None
     for line in doc.splitlines():
@@ -129,13 +129,14 @@ def _table(section: str, classes, template: dict, skip=("by_kind",)) -> list[str
 
 
 def settings_reference() -> str:
-    """The settings reference page (MyST), from ``strand.case.SECTIONS``, the registered set-up
-    kinds' own settings and the cable's fields."""
-    import strand.case
-    from strand import cable, kinds
-    from strand.settings import KIND_SECTIONS
+    """The settings reference page (MyST), from ``strand.app.settings.SECTIONS``, the registered
+    set-up kinds' own settings and the cable's fields."""
+    import strand.app.case
+    from strand.app import kinds
+    from strand.app.settings import KIND_SECTIONS, SECTIONS
+    from strand.cable import description as cable
 
-    template = _template_comments(strand.case.__doc__)
+    template = _template_comments(strand.app.case.__doc__)
     out = [
         "# Settings reference",
         "",
@@ -167,7 +168,7 @@ def settings_reference() -> str:
         out.append(f"| `{key}` | {where} | {_cell(text)} |")
     optional = [f.name for f in fields(cable.Wire) if _default(f) != "required"]
     out += ["", f"Every key is required but {', '.join(f'`{k}`' for k in optional)}."]
-    for section, cls in strand.case.SECTIONS.items():
+    for section, cls in SECTIONS.items():
         out += ["", f"## `[{section}]`", ""]
         doc = (inspect.getdoc(cls) or "").split("\n\n")[0]
         if doc and "Attributes:" not in doc and not doc.startswith(f"{cls.__name__}("):
@@ -197,8 +198,8 @@ def _record_rows(record_type) -> list[str]:
 def kind_columns() -> str:
     """Per registered set-up kind, the columns its state and bending records give to
     ``steps.csv`` and ``moment_curvature.csv`` (from the records' field metadata)."""
-    from strand import kinds
-    from strand.case import load_case
+    from strand.app import kinds
+    from strand.app.case import load_case
 
     out = []
     for kind in kinds.registered():

@@ -22,7 +22,7 @@ from collections.abc import Callable
 import numpy as np
 import numpy.typing as npt
 
-from ..cable import Cable
+from ..cable.description import Cable
 from .stick_slip import ei_min, masing
 
 __all__ = [

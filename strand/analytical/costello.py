@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from ..cable import Cable
+from ..cable.description import Cable
 
 __all__ = ["costello_stiffness", "held_end_torque"]
 

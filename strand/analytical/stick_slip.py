@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from ..cable import Cable
+from ..cable.description import Cable
 
 __all__ = ["EI_MIN_VARIANTS", "ei_min", "StickSlipLaw", "masing", "loop_area"]
 

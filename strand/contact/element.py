@@ -17,7 +17,7 @@ n and the tangent plane frozen at the start of the step. Two slip measures (``SL
   P_n(Δu_b − Δu_a + d n × δω_a).
 
 ``resolve_normal`` names the normal a group uses; ``strand.contact.pairs`` builds groups on any
-beams (``strand.strand_contact`` those of a strand). Units: m, N, rad.
+beams (``strand.model.strand_contact`` those of a strand). Units: m, N, rad.
 """
 
 from __future__ import annotations

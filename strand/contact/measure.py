@@ -2,7 +2,7 @@
 
 The element evaluates each gap at its fixed node pair along its own normal; the distance between
 the beams' deformed polylines near the pair measures the actual clearance, to check the element
-(diagnostics; a strand's pairs: ``strand.strand_contact.centreline_gaps``).
+(diagnostics; a strand's pairs: ``strand.model.strand_contact.centreline_gaps``).
 """
 
 from __future__ import annotations

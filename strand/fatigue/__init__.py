@@ -6,7 +6,8 @@ Physics only (numpy): ``stress`` (surface stresses of round wires from their sec
 for steel wire; Miner's rule), ``tn`` (the strand-level T–N curves of DNV-OS-E301 and API RP 2SK),
 ``zones`` (free span and clamp zones), ``poffenberger`` (where Poffenberger–Swart holds),
 ``spectrum`` (load spectra: a history reduced by rainflow, their Miner sum). The run's
-per-step histories come from ``strand.history``; ``strand.fatigue_report`` puts them together.
+per-step histories come from ``strand.app.history``; ``strand.app.fatigue.report`` puts them
+together.
 """
 
 from .cycles import Cycles, rainflow_cycles

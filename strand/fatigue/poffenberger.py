@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytical.stick_slip import StickSlipLaw
-from ..cable import Cable
+from ..cable.description import Cable
 
 __all__ = ["SPAN_TOLERANCE", "SpanCheck", "span_error", "span_check"]
 

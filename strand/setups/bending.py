@@ -43,8 +43,8 @@ import numpy.typing as npt
 from dolfinx import fem
 
 from ..contact.kinematics import rotation_matrix
-from ..model import StrandModel
-from ..post import section_resultants
+from ..model.model import StrandModel
+from ..model.post import section_resultants
 from .base import TestSetup, pilot_links, quantity
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]

@@ -9,7 +9,7 @@ the load direction. It measures the midspan deflection, the end's axial displace
 moment and curvature of the midspan section. Under displacement control (``control``, a
 ``ControlledDisplacement``) its cycle parameter prescribes the core's lateral displacement at a
 height (midspan, or Y_b's point near the clamp) and every step finds the saddle load that gives
-it (``strand.setups.displacement_control``). Units: m, N, N m.
+it (``strand.solver.displacement_control``). Units: m, N, N m.
 """
 
 from __future__ import annotations
@@ -20,10 +20,10 @@ import numpy as np
 import numpy.typing as npt
 from dolfinx import fem
 
-from ..model import StrandModel
-from ..post import bending_stiffness_bounds, section_resultants
+from ..model.model import StrandModel
+from ..model.post import bending_stiffness_bounds, section_resultants
+from ..solver.displacement_control import DisplacementControl
 from .base import TestSetup, owned_load, pilot_links, quantity
-from .displacement_control import DisplacementControl
 
 __all__ = [
     "SaddleTest",

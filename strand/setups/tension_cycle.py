@@ -1,6 +1,6 @@
 """The tension-cycle test: the saddle test whose end force is a mean tension plus a swing, with
 an optional saddle load held at midspan (the set-up of the ``tension_cycle`` kind,
-``strand.kinds.tension_cycle``). Units: m, N, N m.
+``strand.app.kinds.tension_cycle``). Units: m, N, N m.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..post import section_resultants
+from ..model.post import section_resultants
 from .base import quantity
 from .saddle import SaddleTest
 

@@ -53,7 +53,7 @@ def pattern_lu(A: PETSc.Mat, ordering: int) -> tuple[float, float]:
         B.setValuesCSR(ia, ja, np.full(len(ja), -1e-3))
         B.assemble()
         B.shift(1.0)
-        # ICNTL(14): strand.problem's distributed workspace
+        # ICNTL(14): strand.model.problem's distributed workspace
         icntl = {7: ordering, **({14: 100} if A.comm.size > 1 else {})}
         ksp, F = mumps_lu(B, icntl)
         try:

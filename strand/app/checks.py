@@ -1,0 +1,110 @@
+"""The checks of a whole case, across its sections: the load steps and the loads, the mesh against
+the span, the set-up kind's own checks, the fatigue curves and layers, and a ``[fatigue] spectrum``
+run as the ``[load] sweep``.
+
+``strand.app.case`` reads each setting and checks it alone (type, sign); ``checked_case`` then
+checks the settings against one another and against the cable, before any computing. It sits
+above the set-up kinds (``strand.app.kinds``), whose checks it runs, and below
+``strand.app.case``, which calls it when it reads a case.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..cable.description import Cable
+from ..fatigue.sn import SN_CURVES
+from ..solver.convergence import ITERATIONS
+from . import kinds
+from .errors import CaseError
+from .settings import LINE_SEARCHES, STEP_CONTROLS, Case, FatigueSettings
+
+__all__ = ["checked_case"]
+
+
+def checked_case(case: Case) -> Case:
+    """``case`` with the amplitudes of a ``[fatigue] spectrum`` as its ``[load] sweep``, every
+    setting checked against the others and the cable (``CaseError`` naming ``case.source``)."""
+    try:
+        case = _spectrum_sweep(case)
+        _check_steps_and_load(case)
+        _check_fatigue(case.fatigue, case.cable)
+    except CaseError as e:
+        raise CaseError(f"{case.source}: {e}") from None
+    return case
+
+
+def _check_steps_and_load(case: Case) -> None:
+    steps, load, mesh = case.steps, case.load, case.mesh
+    if steps.line_search not in LINE_SEARCHES:
+        raise CaseError(
+            f"[steps] line_search = {steps.line_search!r}: expected one of {list(LINE_SEARCHES)}"
+        )
+    if steps.control not in STEP_CONTROLS:
+        raise CaseError(
+            f"[steps] control = {steps.control!r}: expected one of {list(STEP_CONTROLS)}"
+        )
+    if steps.iteration not in ITERATIONS:
+        raise CaseError(
+            f"[steps] iteration = {steps.iteration!r}: expected one of {list(ITERATIONS)}"
+        )
+    for kind in kinds.registered():  # every kind's own settings, whichever the case's
+        kind.check_settings(load.by_kind[kind.name], steps.by_kind[kind.name])
+    if mesh.h_max >= mesh.length:
+        raise CaseError(
+            f"[mesh] h_max = {mesh.h_max} m must be shorter than the span [mesh] length = "
+            f"{mesh.length} m"
+        )
+    kinds.kind_of(case).check_case(case)
+    if load.sweep and not any(load.cycle):
+        raise CaseError(
+            f"[load] sweep = {list(load.sweep)} needs a cycle with a target other than 0 "
+            f"(cycle = {list(load.cycle)} stays at zero load)"
+        )
+
+
+def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
+    if fatigue.sn_curve not in (*SN_CURVES, "custom"):
+        raise CaseError(
+            f"[fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
+            f'{sorted(SN_CURVES)} or "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2)'
+        )
+    if fatigue.steel_sn_curve not in (*SN_CURVES, "none"):
+        raise CaseError(
+            f"[fatigue] steel_sn_curve = {fatigue.steel_sn_curve!r} is unknown; choose one of "
+            f'{sorted(SN_CURVES)} or "none"'
+        )
+    try:
+        fatigue.curve()
+    except ValueError as e:
+        raise CaseError(f"[fatigue] {e}") from None
+    bad = [
+        i for i in fatigue.sn_layers if not float(i).is_integer() or not 0 <= i < len(cable.layers)
+    ]
+    if bad:
+        raise CaseError(
+            f"[fatigue] sn_layers = {list(fatigue.sn_layers)}: layers are numbered 0 (core) to "
+            f"{len(cable.layers) - 1}"
+        )
+
+
+def _spectrum_sweep(case: Case) -> Case:
+    """``case`` with the amplitudes of ``[fatigue] spectrum`` as its ``[load] sweep``: a
+    spectrum runs as a sweep; refused where the sweep lists other amplitudes, or without the
+    fatigue outputs, which give each amplitude's damage."""
+    spectrum, sweep = case.fatigue.spectrum, case.load.sweep
+    if not spectrum:
+        return case
+    amplitudes = tuple(a for a, _ in spectrum)
+    if not case.fatigue.outputs:
+        raise CaseError("[fatigue] spectrum needs [fatigue] outputs = true (each amplitude's "
+                        "damage comes from its fatigue report)")  # fmt: skip
+    if not any(case.load.cycle):
+        raise CaseError(f"[fatigue] spectrum needs a cycle with a target other than 0 (cycle = "
+                        f"{list(case.load.cycle)} stays at zero load)")  # fmt: skip
+    if sweep and sorted(sweep) != sorted(amplitudes):
+        raise CaseError(
+            f"[fatigue] spectrum amplitudes {list(amplitudes)} differ from [load] sweep = "
+            f"{list(sweep)}; give the spectrum alone: it runs its amplitudes as the sweep"
+        )
+    return case if sweep else replace(case, load=case.load.with_values(sweep=amplitudes))

@@ -1,0 +1,42 @@
+"""The registry of set-up kinds: the kinds by their ``[load] kind`` name, in the order registered.
+
+It imports nothing but ``CaseError``, so that what sits below the kinds can read it: the settings
+take every registered kind's own settings from ``registered`` (importing this module loads the
+package ``strand.app.kinds`` first, which registers the built-in kinds). ``register``
+(``strand.app.kinds.base``) checks a kind against the settings before it ``add``s it here."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..errors import CaseError
+
+__all__ = ["add", "unregister", "registered", "lookup"]
+
+_KINDS: dict[str, Any] = {}  # name → SetupKind
+
+
+def add(kind: Any) -> Any:
+    """Keep ``kind`` (a ``SetupKind``, checked by ``register``) under its name."""
+    _KINDS[kind.name] = kind
+    return kind
+
+
+def unregister(name: str) -> None:
+    """Take the kind ``name`` out of the registry."""
+    del _KINDS[name]
+
+
+def registered() -> tuple[Any, ...]:
+    """The registered kinds, in the order they were registered."""
+    return tuple(_KINDS.values())
+
+
+def lookup(name: str) -> Any:
+    """The kind ``name``; a ``CaseError`` naming the known kinds if there is none."""
+    try:
+        return _KINDS[name]
+    except KeyError:
+        *others, last = _KINDS
+        choices = f"{', '.join(others)} or {last}" if others else last
+        raise CaseError(f"[load] kind = {name!r} is unknown; choose {choices}") from None

@@ -1,0 +1,236 @@
+"""Figures of a run (matplotlib, and the deformed strand with pyvista): the wires' axial forces,
+the set-up kind's own figures, the deformed strand and the fatigue report's figures. The
+pictures themselves (off-screen pyvista, wires as tubes) are the library's
+(``strand.cable.pictures``)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from ..cable.pictures import offscreen_plotter, save
+
+__all__ = ["results_figures", "fatigue_figures", "save_figure"]
+
+
+def results_figures(case, result, problem, kind_figures: Callable[[str], list[Path]]) -> list[Path]:
+    """The run's figures (PNG) in ``result.folder``: axial force along z per layer and sector at
+    the largest load (the seed paper's Fig. 3), its change from the tensioned state (Fig. 4), the
+    set-up kind's own (``kind_figures(note)``, which the runner hands in:
+    ``SetupKind.figures``; the saddle test's load–deflection loop, Fig. 5), and the deformed
+    strand coloured by axial force. Figures whose data the run did not reach are skipped."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..model.post import sector_of
+
+    folder = Path(result.folder)
+    paths = []
+    n_layers = len(case.cable.layers)
+    L = case.mesh.length
+    cmap = plt.get_cmap("twilight", 8)
+
+    note = incomplete_note(result)
+
+    def save_fig(fig, name, tight=True):
+        paths.append(save_figure(fig, folder / name, note, tight))
+
+    peak, base = result.peak, result.tensioned
+    P_peak = result.peak_step.load if result.peak_step is not None else 0.0
+    if peak is not None:
+        fig, axes = plt.subplots(n_layers, 1, figsize=(9, 2.2 * n_layers), sharex=True)
+        for i, ax in enumerate(np.atleast_1d(axes)):
+            m = peak.layer == i
+            sec = sector_of(peak.phi[m])
+            sc = ax.scatter(1e3 * peak.z[m], peak.axial[m], c=sec, cmap=cmap, vmin=-0.5,
+                            vmax=7.5, s=3)  # fmt: skip
+            ax.set_ylabel(f"{'core' if i == 0 else f'layer {i}'}\nN (N)")
+        ax.set_xlabel("z (mm)")
+        cb = fig.colorbar(sc, ax=axes, ticks=range(8))
+        cb.ax.set_yticklabels([f"{-180 + 45 * k}…{-135 + 45 * k}°" for k in range(8)])
+        cb.set_label("sector of φ (90° = stretched fibre)")
+        fig.suptitle(
+            f"wire axial forces at P = {P_peak / 1e3:.2f} kN, T = {case.load.tension / 1e3:g} kN"
+        )
+        save_fig(fig, "axial_force_sectors.png", tight=False)
+
+    if peak is not None and base is not None:
+        fig, axes = plt.subplots(1, n_layers - 1, sharey=True, layout="constrained",
+                                 figsize=(max(3.2 * (n_layers - 1), 6.0) + 1.0, 3.8))  # fmt: skip
+        near = np.abs(peak.z - L / 2) <= 0.1 * L
+        for i, ax in enumerate(np.atleast_1d(axes), start=1):
+            m = near & (peak.layer == i)
+            sc = ax.scatter(peak.phi[m], peak.axial[m] - base.axial[m], s=3, c=1e3 * peak.z[m],
+                            cmap="viridis", vmin=1e3 * 0.4 * L, vmax=1e3 * 0.6 * L)  # fmt: skip
+            ax.axhline(0, color="k", lw=0.5)
+            ax.set_xticks([-180, -90, 0, 90, 180])
+            ax.set_title(f"layer {i}")
+            ax.set_xlabel("φ (deg), 90° = stretched fibre")
+        np.atleast_1d(axes)[0].set_ylabel("ΔN (N)")
+        fig.colorbar(sc, ax=axes, label="z (mm)", pad=0.01)
+        fig.suptitle(
+            f"change of wire axial force from the tensioned state to P = {P_peak / 1e3:.2f} kN\n"
+            f"(elements within ±{0.1 * L * 1e3:g} mm of midspan)"
+        )
+        save_fig(fig, "axial_force_change.png", tight=False)
+
+    paths += kind_figures(note)
+
+    if peak is not None and result.peak_w is not None:
+        paths.append(deformed_picture(case, result, problem, folder / "deformed_axial_force.png",
+                                      note))  # fmt: skip
+    return paths
+
+
+def save_figure(fig, path: Path, note: str = "", tight: bool = True) -> Path:
+    """Lay out ``fig`` (``tight``: tight layout; else its own engine, e.g. constrained for a
+    colour bar shared by several axes), with ``note`` in red along the bottom; save and close."""
+    import matplotlib.pyplot as plt
+
+    if tight:
+        fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
+    elif note and fig.get_layout_engine() is not None:  # constrained: leave the bottom free
+        fig.get_layout_engine().set(rect=(0, 0.05, 1, 0.95))
+    if note:
+        fig.text(0.5, 0.005, note, color="tab:red", ha="center", va="bottom", fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def incomplete_note(result) -> str:
+    """The line a figure of a run that stopped early carries ("" for a complete run)."""
+    if not result.failure:
+        return ""
+    how = "was interrupted" if result.interrupted else "stopped early (a load step failed)"
+    return f"INCOMPLETE: the run {how} after step {len(result.steps)}; see summary.txt"
+
+
+def magnification(largest: float, size: float) -> float:
+    """The factor (1, 2 or 5 × 10^k, at least 1) that shows a displacement of ``largest`` (m) as
+    between a fifth and a half of ``size`` (m)."""
+    if largest <= 0 or 2 * largest >= size:
+        return 1.0
+    target = size / (2 * largest)
+    decade = 10.0 ** np.floor(np.log10(target))
+    return float(max(f * decade for f in (1, 2, 5) if f * decade <= target))
+
+
+def deformed_picture(case, result, problem, path, note: str = "") -> Path:
+    """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
+    at the largest load and coloured by wire axial force, seen across the load. Displacements are
+    magnified (``magnification``: the largest across the strand's axis shown as up to half the
+    strand's diameter), the factor in the title."""
+    import pyvista
+
+    g = problem.geometry
+    peak, L = result.peak, case.mesh.length
+    D = case.cable.outer_diameter
+    half = min(L / 2, max(0.15 * L, 6 * D))
+    outer = len(case.cable.layers) - 1
+    shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
+    u = result.peak_w[:, :3]  # the geometry's point order, whole on every rank
+    factor = magnification(float(np.abs(u[g.cells[shown], :2]).max(initial=0.0)), D)
+    x = g.points + factor * u
+    lines = np.column_stack([np.full(len(shown), 2), g.cells[shown]]).ravel()
+    grid = pyvista.PolyData(x, lines=lines)
+    grid.cell_data["N (N)"] = peak.axial[shown]
+    radius = case.cable.layers[-1].wire.diameter / 2
+    grid = grid.cell_data_to_point_data().tube(radius=radius, n_sides=16)
+    plotter = offscreen_plotter(window_size=(1800, 650))
+    plotter.add_mesh(
+        grid, scalars="N (N)", cmap="coolwarm",
+        scalar_bar_args={"title": "N (N)\n", "vertical": True, "height": 0.65, "width": 0.05,
+                         "position_x": 0.9, "position_y": 0.15, "title_font_size": 18,
+                         "label_font_size": 14, "fmt": "%.0f", "n_labels": 5},
+    )  # fmt: skip
+    P = result.peak_step.load
+    plotter.add_text(
+        f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
+        f"midspan, at P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
+        + (f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"),
+        position="upper_edge", font_size=10,
+    )  # fmt: skip
+    if note:
+        plotter.add_text(note, position="lower_left", font_size=9, color="red")
+    d = np.asarray(case.load.direction, float) * np.sign(P or 1.0)
+    side = np.cross([0.0, 0.0, 1.0], d)
+    plotter.view_vector(side, viewup=-d)
+    plotter.reset_camera()
+    plotter.camera.zoom(1.5)
+    return save(plotter, path)
+
+
+def fatigue_figures(folder, report) -> list[Path]:
+    """The fatigue report's figures in ``folder``: a fretting map per interface (initial z against
+    the angle about the axis; pairs that slid coloured by Ruiz's F₂ of the worst cycle, grey where
+    F₂ is zero, pairs stuck throughout in blue; dashed lines bound the clamp zones) and the
+    surface stress range along every outer wire (with Poffenberger–Swart's amplitude × 2 at the
+    clamp where it holds)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    from .history import read_history
+
+    folder = Path(folder)
+    st = read_history(folder / "contact_pairs.h5").static
+    c = report.crossings
+    interfaces = np.unique(st["interface"])
+    fig, axes = plt.subplots(1, len(interfaces), figsize=(max(4 * len(interfaces), 6.5), 5),
+                             sharey=True, squeeze=False, layout="constrained")  # fmt: skip
+    f2, stuck = 1e-6 * c["ruiz_f2"], c["stuck"]
+    positive = f2[(f2 > 0) & ~stuck]
+    norm = LogNorm(positive.max() * 1e-4, positive.max()) if len(positive) else None
+    sc = None
+    for ax, i in zip(axes[0], interfaces, strict=True):
+        m = st["interface"] == i
+        held, flat, slid = m & stuck, m & ~stuck & (f2 <= 0), m & ~stuck & (f2 > 0)
+        ax.scatter(st["angle"][held], 1e3 * st["z"][held], s=3, c="tab:blue", lw=0,
+                   label="stuck throughout")  # fmt: skip
+        ax.scatter(st["angle"][flat], 1e3 * st["z"][flat], s=3, c="0.75", lw=0)
+        sc = ax.scatter(st["angle"][slid], 1e3 * st["z"][slid], c=f2[slid], s=5, cmap="inferno",
+                        norm=norm, lw=0)  # fmt: skip
+        for z in (report.end_zone, report.length - report.end_zone):
+            if 0 < z < report.length:
+                ax.axhline(1e3 * z, color="k", ls="--", lw=0.6)
+        ax.set(title=f"interface {i}|{i + 1}", xlabel="angle about the axis (°)", xlim=(-180, 180))
+    axes[0, 0].set_ylabel("z (mm)")
+    if stuck.any():
+        axes[0, 0].legend(loc="upper right", fontsize=7, markerscale=3)
+    if norm is not None:
+        fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
+    fig.suptitle("fretting map: pairs that slid, coloured by F₂\n(blue: stuck throughout; "
+                 "dashed: clamp zones)", fontsize=10)  # fmt: skip
+    paths = [save_figure(fig, folder / "fretting_map.png", None, False)]
+
+    s, e = read_history(folder / "wire_sections.h5").static, report.elements
+    outer = s["layer"] == s["layer"].max()
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for w in np.unique(s["wire"][outer]):
+        m = s["wire"] == w
+        ax.plot(1e3 * s["z"][m], 1e-6 * e["range"][m], lw=0.6, alpha=0.7)
+    ps = report.poffenberger_swart
+    if ps is not None and ps["holds"]:
+        ax.plot(
+            [0],
+            [2e-6 * ps["sigma_a"]],
+            "k*",
+            ms=10,
+            label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)",
+        )
+        ax.legend()
+    ax.set(
+        xlabel="z (mm)",
+        ylabel="largest surface stress range (MPa)",
+        title="outer wires: surface stress range over the history (one line per wire)",
+    )
+    ax.grid(alpha=0.3)
+    paths.append(save_figure(fig, folder / "stress_range.png", None, True))
+    return paths

@@ -1,0 +1,368 @@
+"""Per-step recorders: each writes one output of a run as the run goes, from typed step records.
+
+After every converged step the runner builds a ``StepContext`` (the ``RunStep`` record, the
+problem, and the cell results computed once, on demand) and hands it to each recorder. A recorder
+opens its file when built, appends and flushes at every step (a failed or interrupted run keeps
+every step written so far), and closes in ``close``. Units: SI, named in the column headers.
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from ..model.pair_results import PairResults
+from ..model.parallel import root_open
+from ..setups.base import columns, values
+
+__all__ = [
+    "RunStep",
+    "StepBending",
+    "SlipFractions",
+    "StepContext",
+    "Recorder",
+    "StepTable",
+    "AxialForceTable",
+    "BendingTable",
+    "FieldSeries",
+    "KeyStates",
+    "SlipTable",
+    "SmallSlidingMonitor",
+    "CheckpointRecorder",
+]
+
+
+@dataclass(frozen=True)
+class RunStep:
+    """One converged step of a run: its number (from 1), stage, the parameter it ramps and that
+    parameter's value, the programme time (``LoadProgramme.time``), Newton's effort (iterations,
+    step cuts before it, wall time s, final residual norm N), the set-up's measures (``state``)
+    and the iterations of the failed attempts before it."""
+
+    number: int
+    stage: str
+    parameter: str
+    load: float
+    time: float
+    iterations: int
+    cuts: int
+    seconds: float
+    residual: float
+    state: Any
+    failed_iterations: int = 0
+    factorisations: int = 0
+
+
+@dataclass(frozen=True)
+class StepBending:
+    """The set-up's bending measures at one step of the cycle (a row of
+    ``moment_curvature.csv``): the step's number and the ``TestSetup.moment_curvature`` record."""
+
+    step: int
+    measures: Any
+
+
+@dataclass(frozen=True)
+class SlipFractions:
+    """A row of ``slip.csv``: the step's number, the cycle parameter's value there (its unit),
+    and per interface i|i+1 the fraction of its pairs in the measuring zone that slip."""
+
+    step: int
+    load: float
+    slipping: npt.NDArray[np.float64]
+
+
+@dataclass
+class StepContext:
+    """What recorders see at a step: the record, the problem, and the cell results (lazy)."""
+
+    step: RunStep
+    problem: Any
+    cycle: bool  # a step of the cycle (not of the tensioning)
+    _cells: Any = field(default=None, repr=False)
+    _evaluate: Any = field(default=None, repr=False)
+
+    _residual: Any = field(default=None, repr=False)
+    _pairs: Any = field(default=None, repr=False)
+    #: where the run stands in its programme (``programme.Position``), for checkpoints
+    position: Any = None
+    _checkpoint: Any = field(default=None, repr=False)
+
+    @property
+    def checkpoint(self):
+        """The state at this step as a ``checkpoint.Checkpoint`` (captured once; collective)."""
+        if self._checkpoint is None:
+            from ..model.checkpoint import capture
+
+            self._checkpoint = capture(self.problem, self.step.number, self.step.time,
+                                       self.position, self.residual)  # fmt: skip
+        return self._checkpoint
+
+    @property
+    def pairs(self) -> PairResults:
+        """The model's ``pair_results()`` at this step (computed once)."""
+        if self._pairs is None:
+            self._pairs = self.problem.model.pair_results()
+        return self._pairs
+
+    @property
+    def cells(self):
+        """``post.CellResults`` at this step (computed once)."""
+        if self._cells is None:
+            self._cells = self._evaluate()
+        return self._cells
+
+    @property
+    def residual(self):
+        """Unconstrained residual (N, 6) at this step, in the geometry's point order: the
+        reactions at supports."""
+        if self._residual is None:
+            residual = self.problem.solver.unconstrained_residual()
+            self._residual = self.problem.model.gather_nodes(residual)
+        return self._residual
+
+
+class Recorder(Protocol):
+    def record(self, ctx: StepContext) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class _CsvFile:
+    def __init__(self, path: Path, header: list[str]):
+        self.file = root_open(path, "w", newline="")  # noqa: SIM115 (closed in close)
+        self.writer = csv.writer(self.file)
+        self.writer.writerow(header)
+        self.file.flush()
+
+    def close(self) -> None:
+        self.file.close()
+
+
+class StepTable(_CsvFile):
+    """``steps.csv``: one row per converged step: number, stage, programme time (the time of
+    the field series), the set-up's state, with a ``gauge`` (``reactions.ReactionGauge``) the
+    strand's reactions at both ends (``EndReactions``, also kept in ``reactions`` by step
+    number), Newton's iterations, cuts and LU factorisations, wall time (s) and final residual
+    norm (N)."""
+
+    def __init__(self, folder: Path, state_type, gauge=None):
+        from ..model.reactions import EndReactions
+
+        self.gauge = gauge
+        self.reactions: dict[int, Any] = {}
+        measured = columns(EndReactions) if gauge is not None else []
+        super().__init__(
+            Path(folder) / "steps.csv",
+            ["step", "stage", "time", *columns(state_type), *measured, "iterations", "cuts",
+             "failed_iterations", "factorisations", "seconds", "residual_N"],
+        )  # fmt: skip
+
+    def record(self, ctx: StepContext) -> None:
+        s = ctx.step
+        measured = []
+        if self.gauge is not None:
+            self.reactions[s.number] = self.gauge.measure(ctx.residual)
+            measured = values(self.reactions[s.number])
+        self.writer.writerow(
+            [s.number, s.stage, f"{s.time:.12g}", *values(s.state), *measured, s.iterations,
+             s.cuts, s.failed_iterations, s.factorisations, s.seconds, s.residual]
+        )  # fmt: skip
+        self.file.flush()
+
+
+class AxialForceTable:
+    """``axial_forces.csv``: the axial force of every element at every step, with its wire,
+    layer, initial z (m) and current angle φ (deg), and the value of the set-up's load
+    ``parameter`` (in ``unit``) at the step."""
+
+    FORMAT = ["%d", "%.6g", "%d", "%d", "%d", "%.6e", "%.2f", "%.9e"]
+
+    def __init__(self, folder: Path, parameter: str, unit: str):
+        self.parameter = parameter
+        self.file = root_open(Path(folder) / "axial_forces.csv", "w", newline="")  # noqa: SIM115
+        self.file.write(f"step,{parameter}_{unit},element,wire,layer,z_m,phi_deg,N_N\n")
+        self.file.flush()
+
+    def record(self, ctx: StepContext) -> None:
+        cells = ctx.cells
+        n = len(cells.axial)
+        load = ctx.problem.setup.get(self.parameter)
+        table = np.column_stack(
+            [np.full(n, ctx.step.number), np.full(n, load), np.arange(n), cells.wire,
+             cells.layer, cells.z, cells.phi, cells.axial]
+        )  # fmt: skip
+        np.savetxt(self.file, table, delimiter=",", fmt=self.FORMAT)
+        self.file.flush()
+
+    def close(self) -> None:
+        self.file.close()
+
+
+class BendingTable(_CsvFile):
+    """``moment_curvature.csv``: the set-up's bending measures at every step of the cycle, also
+    kept in ``rows`` (``StepBending``)."""
+
+    def __init__(self, folder: Path, record_type):
+        super().__init__(Path(folder) / "moment_curvature.csv", ["step", *columns(record_type)])
+        self.rows: list[StepBending] = []
+
+    def record(self, ctx: StepContext) -> None:
+        if not ctx.cycle:
+            return
+        row = ctx.problem.setup.moment_curvature(ctx.cells, ctx.residual)
+        self.rows.append(StepBending(ctx.step.number, row))
+        self.writer.writerow([ctx.step.number, *values(row)])
+        self.file.flush()
+
+
+class FieldSeries:
+    """``fields.xdmf`` (+ ``fields.h5``) and, with ``vtx``, ``fields.bp``: u, θ, section forces and the
+    cell ids at every step, at the step's programme time as written in ``steps.csv`` (ParaView's
+    time axis), each frame named ``step <n>`` after its row there; ``fields_loads.csv`` beside
+    them gives the set-up's loads at every frame. With ``initial``, the series opens with the
+    unloaded strand at t = 0 (frame ``step 0``: zero displacement, loads 0), the state before
+    the first step of a run from the start."""
+
+    def __init__(self, folder: Path, problem, vtx: bool = True, initial: bool = True):
+        from ..model.fields import FieldWriter, cell_function
+
+        mesh, g = problem.cmesh.mesh, problem.geometry
+        ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]
+        self.setup = problem.setup
+        self.loads = {f"{p}_{self.setup.units[p]}": p for p in self.setup.parameters}
+        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids, vtx=vtx,
+                                  loads=list(self.loads))  # fmt: skip
+        if initial:
+            self.writer.write(0.0, "step 0", self._loads())
+
+    def _loads(self) -> dict[str, float]:
+        return {name: self.setup.get(p) for name, p in self.loads.items()}
+
+    def record(self, ctx: StepContext) -> None:
+        # the time as steps.csv writes it (12 digits), so that the two axes are equal
+        t = float(f"{ctx.step.time:.12g}")
+        self.writer.write(t, f"step {ctx.step.number}", self._loads())
+
+    def close(self) -> None:
+        self.writer.close()
+
+
+class KeyStates:
+    """Keeps the cell results and contact pair results of the tensioned state (last step before
+    the cycle) and of the tension's last step (the same state unless a load is then applied and
+    held, as ``tension_cycle``'s saddle load), the cell results of the first cycle step, and
+    those of the largest abs(cycle load) reached, with the nodal unknowns there ((N, 6) in the
+    geometry's point order; for summary and figures)."""
+
+    def __init__(self):
+        self.tensioned = None
+        self.tensioned_pairs = None
+        self.tension_end = None
+        self.tension_end_pairs = None
+        self.first_cycle = None
+        self.peak = None
+        self.peak_w = None
+        self._peak_load = 0.0
+
+    def record(self, ctx: StepContext) -> None:
+        if not ctx.cycle:
+            self.tensioned = ctx.cells
+            self.tensioned_pairs = ctx.pairs
+            if ctx.step.parameter == "tension":
+                self.tension_end, self.tension_end_pairs = ctx.cells, ctx.pairs
+            return
+        if self.first_cycle is None:
+            self.first_cycle = ctx.cells
+        if abs(ctx.step.load) > abs(self._peak_load):
+            self._peak_load = ctx.step.load
+            self.peak = ctx.cells
+            self.peak_w = ctx.problem.model.node_values()
+
+    def close(self) -> None:
+        pass
+
+
+class SlipTable(_CsvFile):
+    """``slip.csv``: per interface i|i+1, the fraction of its contact pairs that slip (at the
+    Coulomb cap) among those whose inner node lies within ``zone`` = (z_min, z_max) (m), at
+    every step, with the step's value of the cycle parameter; also kept in ``rows``
+    (``SlipFractions``)."""
+
+    def __init__(self, folder: Path, geometry, zone: tuple[float, float], parameter: str,
+                 unit: str):  # fmt: skip
+        pairs = geometry.pairs
+        z = geometry.points[pairs.a, 2]
+        inside = (z >= zone[0]) & (z <= zone[1])
+        self.n_interfaces = len(geometry.cable.layers) - 1
+        self.masks = [inside & (pairs.interface == i) for i in range(self.n_interfaces)]
+        self.parameter = parameter
+        super().__init__(
+            Path(folder) / "slip.csv",
+            ["step", f"{parameter}_{unit}"]
+            + [f"slipping_{i}|{i + 1}" for i in range(self.n_interfaces)],
+        )
+        self.rows: list[SlipFractions] = []
+
+    def record(self, ctx: StepContext) -> None:
+        slipping = ctx.pairs.slipping
+        fractions = [slipping[m].mean() if m.any() else 0.0 for m in self.masks]
+        load = ctx.problem.setup.get(self.parameter)
+        self.rows.append(SlipFractions(ctx.step.number, load, np.array(fractions, dtype=float)))
+        self.writer.writerow([ctx.step.number, load, *fractions])
+        self.file.flush()
+
+
+class SmallSlidingMonitor:
+    """Checks at every step that the pairs fixed at t = 0 still face each other
+    (``post.sliding_check``); at the first step where they do not, prints a warning to ``stream``
+    and keeps it in ``warnings`` (for the summary). Not used with large sliding."""
+
+    def __init__(self, model, stream, warnings: list[str]):
+        self.model = model
+        self.stream = stream
+        self.warnings = warnings
+        self.warned = False
+
+    def record(self, ctx: StepContext) -> None:
+        if self.warned:
+            return
+        from ..model.post import sliding_check
+
+        m = self.model
+        check = sliding_check(m.geometry, m.positions(), ctx.pairs.gap)
+        if len(check.exceeded()):
+            self.warned = True
+            text = f"step {ctx.step.number}: {check.message()}"
+            self.warnings.append(text)
+            print(f"strand: warning: {text}", file=self.stream, flush=True)
+
+    def close(self) -> None:
+        pass
+
+
+class CheckpointRecorder:
+    """``checkpoint.h5``: the last converged state with everything the next step starts from
+    (``strand.model.checkpoint``), replaced after every step, so that ``strand run --restart`` can
+    continue a stopped run; ``tensioned.h5``: the same at the last step before the cycle, the
+    state other load cycles can start from."""
+
+    def __init__(self, folder: Path):
+        self.folder = Path(folder)
+
+    def record(self, ctx: StepContext) -> None:
+        from ..model.checkpoint import write_checkpoint
+
+        if ctx.position is None:
+            return
+        write_checkpoint(self.folder / "checkpoint.h5", ctx.checkpoint)
+        if not ctx.cycle:
+            write_checkpoint(self.folder / "tensioned.h5", ctx.checkpoint)
+
+    def close(self) -> None:
+        pass

@@ -1,0 +1,315 @@
+"""The runner: a problem taken through its load programme with the run's recorders, then the
+summary, the fatigue report and the figures.
+
+``run_programme_with_outputs`` is what ``strand run`` and every sweep member do once the problem
+is built (``strand.app.build``). After every converged step a ``Recording`` makes the step's record,
+hands it to each recorder (``strand.app.recorders``) and prints a progress line; Ctrl-C or a step
+that cannot converge stops the programme at the last converged step, whose outputs are then
+finished like a complete run's. Times in s.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from functools import partial
+from pathlib import Path
+
+from ..model.parallel import is_root
+from ..model.post import CellEvaluator, cell_results
+from ..model.problem import StrandProblem
+from ..model.programme import LoadProgramme, Position, Stage, run_programme
+from ..model.reactions import ReactionGauge
+from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
+from .build import step_control
+from .fatigue.recorders import PairHistory, WireSectionHistory
+from .kinds import kind_of
+from .recorders import (
+    AxialForceTable,
+    BendingTable,
+    CheckpointRecorder,
+    FieldSeries,
+    KeyStates,
+    Recorder,
+    RunStep,
+    SlipTable,
+    SmallSlidingMonitor,
+    StepContext,
+    StepTable,
+)
+from .run_files import write_folder_readme
+from .run_result import RunResult, Start
+from .settings import Case
+from .summary import summarize, wire_stress_line, yield_warnings
+
+__all__ = ["run_programme_with_outputs", "Recording", "Progress", "run_fatigue_report"]
+
+
+class Progress:
+    """One line per converged step: a bar over the whole load programme, load, iterations, time."""
+
+    def __init__(self, programme: LoadProgramme, units: dict[str, tuple[str, float]], stream):
+        self.share = {
+            stage: weight / (length or 1.0)
+            for stage, weight, length in zip(
+                programme.stages, programme.weights(), programme.path_lengths(), strict=True
+            )
+        }
+        self.units = units  # parameter → (unit label, scale)
+        self.stream = stream
+        self.done = 0.0
+        self.previous: dict[str, float] = {}
+        self.t0 = time.perf_counter()
+
+    def step(self, stage: Stage, value: float, its: int, cuts: int, extra: str = "") -> None:
+        self.done += self.share[stage] * abs(value - self.previous.get(stage.parameter, 0.0))
+        self.previous[stage.parameter] = value
+        width = 24
+        filled = int(round(width * min(self.done, 1.0)))
+        bar = "#" * filled + "." * (width - filled)
+        cut = f", {cuts} cut{'s' * (cuts > 1)}" if cuts else ""
+        unit, scale = self.units.get(stage.parameter, ("", 1.0))
+        load = f"{value / scale:8.2f} {unit} {stage.parameter}"
+        print(
+            f"[{bar}] {stage.name:8s} {load}  {its:2d} Newton its{cut}"
+            f"  {extra}  {time.perf_counter() - self.t0:6.1f} s",
+            file=self.stream,
+            flush=True,
+        )
+
+
+def case_recorders(
+    case: Case, problem: StrandProblem, folder: Path, parameter: str, key_states: KeyStates,
+    evaluator: CellEvaluator, stream, warnings: list[str], fresh: bool = True,
+) -> list[Recorder]:  # fmt: skip
+    """The recorders the case's settings ask for, writing into ``folder``; ``parameter``: the
+    cycle's load parameter; ``fresh``: the run starts from the unloaded strand (its field
+    series opens with it at t = 0), not from a restart or a sweep's tensioned state."""
+    su = problem.setup
+    unit = su.units[parameter]
+    recorders = [
+        StepTable(folder, su.state_type, ReactionGauge(problem)),
+        AxialForceTable(folder, parameter, unit),
+        BendingTable(folder, su.bending_type),
+        SlipTable(folder, problem.geometry, su.measuring_zone, parameter, unit),
+        key_states,
+    ]
+    if case.contact.model == "small":
+        recorders.append(SmallSlidingMonitor(problem.model, stream, warnings))
+    if case.output.fields:
+        recorders.append(FieldSeries(folder, problem, vtx=case.output.vtx, initial=fresh))
+    if case.fatigue.outputs:
+        initial = cell_results(problem.model, su.direction, evaluator)
+        recorders += [
+            PairHistory(folder, problem.model, parameter),
+            WireSectionHistory(folder, problem.model, initial, su.direction, parameter),
+        ]
+    if case.output.checkpoint:
+        recorders.append(CheckpointRecorder(folder))
+    return recorders
+
+
+class Recording:
+    """The recorders and progress lines of one run: ``on_step`` after every converged step
+    (``run_programme``'s callback) records it into ``result`` and every recorder.
+
+    Args:
+        keep: the steps after which the state is kept in memory as ``result.kept``.
+        fresh: the run starts from the unloaded strand (not from a ``Start``).
+    """
+
+    def __init__(
+        self, case: Case, problem: StrandProblem, programme: LoadProgramme, result: RunResult,
+        stream, keep: Callable[[RunStep], bool] | None = None, fresh: bool = True,
+    ):  # fmt: skip
+        self.problem, self.programme, self.result, self.keep = problem, programme, result, keep
+        self.case, self.stream = case, stream
+        self.evaluator = CellEvaluator(problem.model)
+        self.key_states = KeyStates()
+        self.recorders = case_recorders(
+            case, problem, result.folder, programme.cycle_parameter, self.key_states,
+            self.evaluator, stream, result.warnings, fresh,
+        )  # fmt: skip
+        self.bending = next(r for r in self.recorders if isinstance(r, BendingTable))
+        self.slip = next(r for r in self.recorders if isinstance(r, SlipTable))
+        self.steps_table = next(r for r in self.recorders if isinstance(r, StepTable))
+        kind = kind_of(case)
+        units = {"tension": ("kN", 1e3), kind.parameter: kind.progress_unit}
+        self.progress = Progress(programme, units, stream)
+        self.seconds = 0.0  # wall time of all recorders together
+
+    def record(self, step: RunStep, position: Position) -> StepContext:
+        """Hand ``step`` to every recorder (timed each), keep its state if asked."""
+        t_out = time.perf_counter()
+        result, problem = self.result, self.problem
+        result.steps.append(step)
+        ctx = StepContext(
+            step, problem, step.parameter == self.programme.cycle_parameter, position=position,
+            _evaluate=lambda: cell_results(problem.model, problem.setup.direction, self.evaluator),
+        )  # fmt: skip
+        for r in self.recorders:
+            t_r = time.perf_counter()
+            r.record(ctx)
+            name = type(r).__name__
+            result.output_timings[name] = (
+                result.output_timings.get(name, 0.0) + time.perf_counter() - t_r
+            )
+        if self.keep is not None and self.keep(step):
+            result.kept = ctx.checkpoint
+        self.seconds += time.perf_counter() - t_out
+        return ctx
+
+    def on_step(self, stage: Stage, rec: StepRecord, position: Position) -> None:
+        """The record of a converged step of ``stage`` (``run_programme``'s callback)."""
+        setup = self.problem.setup
+        value = setup.get(stage.parameter)
+        steps = self.result.steps
+        number = steps[-1].number + 1 if steps else 1  # after any start row
+        step = RunStep(
+            number, rec.stage, stage.parameter, value,
+            self.programme.time(position.stage, value), rec.iterations, rec.cuts, rec.seconds,
+            rec.residuals[-1] if rec.residuals else 0.0, setup.state(), rec.failed_iterations,
+            rec.factorisations,
+        )  # fmt: skip
+        ctx = self.record(step, position)
+        extra = step.state.progress() if ctx.cycle else " " * 14
+        self.progress.step(stage, value, rec.iterations, rec.cuts, extra)
+        if stage.parameter == "tension" and value == stage.target:
+            self.tensioned(ctx)
+
+    def tensioned(self, ctx: StepContext) -> None:
+        """At the end of the tension: the mean wire stress per layer, and a warning (kept for
+        the summary) for every layer whose wires pass the yield stress given with the cable."""
+        cable, length = self.case.cable, self.problem.geometry.length
+        print(wire_stress_line(cable, ctx.cells, length).strip(), file=self.stream, flush=True)
+        for warning in yield_warnings(cable, ctx.cells):
+            self.result.warnings.append(warning)
+            print(f"strand: warning: {warning}", file=self.stream, flush=True)
+
+    def start_from(self, start: Start) -> None:
+        """The state the run starts from, as its first row; the stages before it done."""
+        self.record(start.step, start.position)
+        self.progress.previous[start.step.parameter] = start.step.load
+        for stage in self.programme.stages[: start.position.stage]:
+            self.progress.previous[stage.parameter] = stage.target
+
+    def seconds_of(self, *types: type) -> float:
+        """Wall time (s) of the recorders of ``types`` over the run."""
+        timings = self.result.output_timings
+        return sum(timings.get(type(r).__name__, 0.0) for r in self.recorders
+                   if isinstance(r, types))  # fmt: skip
+
+    def close(self) -> None:
+        for r in self.recorders:
+            r.close()
+
+
+def run_programme_with_outputs(
+    case: Case,
+    problem: StrandProblem,
+    programme: LoadProgramme,
+    folder: Path,
+    stream,
+    start: Start | None = None,
+    t_start: float | None = None,
+    keep: Callable[[RunStep], bool] | None = None,
+) -> RunResult:
+    """Take ``problem`` through ``programme`` (from ``start``, or from the beginning) with the
+    case's recorders writing into ``folder``, then write the summary, fatigue report and
+    figures. ``keep(step)``: the steps after which the state is kept in memory as
+    ``RunResult.kept`` (a ``Checkpoint``; the last such step's)."""
+    t_start = time.perf_counter() if t_start is None else t_start
+    result = RunResult(folder, cycle_parameter=programme.cycle_parameter)
+    recording = Recording(case, problem, programme, result, stream, keep, fresh=start is None)
+    result.setup_seconds = time.perf_counter() - t_start
+    _take_programme(problem, programme, recording, start, stream)
+    keys = recording.key_states
+    result.tensioned, result.peak, result.peak_w = keys.tensioned, keys.peak, keys.peak_w
+    result.tensioned_pairs, result.first_cycle = keys.tensioned_pairs, keys.first_cycle
+    result.tension_end, result.tension_end_pairs = keys.tension_end, keys.tension_end_pairs
+    result.bending, result.slip = recording.bending.rows, recording.slip.rows
+    result.reactions = recording.steps_table.reactions
+    kind = kind_of(case)
+    result.reference = kind.reference(case, result)
+    result.seconds = time.perf_counter() - t_start
+    result.timings = dict(problem.solver.timings, output=recording.seconds)
+    summary = summarize(case, result, problem, kind.summary_lines(case, result))
+    print(summary, file=stream, flush=True)
+    if is_root():  # the summary, report and figures read what every rank has (or rank 0 wrote)
+        (folder / "summary.txt").write_text(summary)
+        _report_and_figures(case, result, problem, recording, stream)
+        write_folder_readme(folder)
+    return result
+
+
+def _take_programme(
+    problem: StrandProblem, programme: LoadProgramme, recording: Recording, start: Start | None,
+    stream,
+) -> None:  # fmt: skip
+    """Run the programme with ``recording``'s callback; a stop (Ctrl-C) or a failed step ends
+    it at the last converged step, said on ``stream`` and in the result; the recorders close."""
+    result = recording.result
+    try:
+        if start is not None:
+            recording.start_from(start)
+        with Interrupt(stream) as interrupt:
+            problem.solver.interrupt = interrupt
+            run_programme(
+                problem, programme, recording.on_step, start.position if start else None,
+                **step_control(recording.case),
+            )  # fmt: skip
+    except RunInterrupted as stop:
+        result.failure, result.interrupted = str(stop), True
+        print(f"strand: stopped: {stop}", file=stream, flush=True)
+    except LoadStepFailure as failure:
+        result.failure = str(failure)
+        print(f"strand: step failed: {failure}", file=stream, flush=True)
+    finally:
+        problem.solver.interrupt = None
+        recording.close()
+
+
+def _report_and_figures(
+    case: Case, result: RunResult, problem: StrandProblem, recording: Recording, stream
+) -> None:
+    """The fatigue report (with a cycle and the histories) and the figures, on rank 0."""
+    report = None
+    if case.fatigue.outputs and len(result.cycle_steps):
+        seconds = recording.seconds_of(PairHistory, WireSectionHistory)
+        report = run_fatigue_report(case, result, seconds, stream)
+        result.fatigue = report
+    if case.output.plots:
+        from .plots import fatigue_figures, results_figures
+
+        paths = results_figures(case, result, problem, partial(kind_of(case).figures, case, result))
+        if report is not None:
+            paths += fatigue_figures(result.folder, report)
+        for path in paths:
+            print(f"figure: {path}", file=stream)
+
+
+def run_fatigue_report(case: Case, result: RunResult, recording: float, stream):
+    """The fatigue report of the run's histories (``strand.app.fatigue.report``): ``fatigue.txt``
+    and the CSV files, with the cost of the histories (``recording`` s) and the report beside the
+    run's."""
+    from .fatigue.report import ReportError, fatigue_report
+
+    t0 = time.perf_counter()
+    try:
+        report = fatigue_report(
+            result.folder, case.cable, case.load.tension, case.fatigue, case.load.direction,
+            clamp=kind_of(case).clamp,
+        )  # fmt: skip
+    except ReportError as e:
+        print(f"strand: no fatigue report: {e}", file=stream, flush=True)
+        return None
+    seconds = time.perf_counter() - t0
+    size = sum((result.folder / f).stat().st_size for f in ("contact_pairs.h5", "wire_sections.h5"))
+    cost = (
+        f"fatigue outputs: histories {size / 1e6:.1f} MB, recorded in {recording:.1f} s, report "
+        f"{seconds:.1f} s; the run {result.seconds:.0f} s"
+    )
+    with open(result.folder / "fatigue.txt", "a") as f:
+        f.write(cost + "\n")
+    print(report.text + cost, file=stream, flush=True)
+    return report

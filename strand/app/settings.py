@@ -1,0 +1,199 @@
+"""The settings of a case: its sections (mesh, load, load steps, outputs, fatigue) and the
+``Case`` that holds them with the cable and its contact settings (``strand.app.case`` reads them
+from a case file).
+
+Every setting has a default. ``[load]`` and ``[steps]`` hold the settings every set-up kind shares
+and, in ``by_kind``, each registered kind's own (``strand.app.kinds``), all read flat as the case
+file writes them (``case.load.zone``). ``strand.app.case`` checks a case file's values against
+these. Units: SI, in the comments.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
+from functools import partial
+from typing import Any
+
+from ..cable.description import Cable
+from ..model.contact_settings import ContactSettings
+
+__all__ = [
+    "Case",
+    "MeshSettings",
+    "LoadSettings",
+    "StepSettings",
+    "OutputSettings",
+    "FatigueSettings",
+    "WithKinds",
+    "KIND_SECTIONS",
+]
+
+
+@dataclass(frozen=True)
+class MeshSettings:
+    length: float = 1.0  # m
+    h_max: float = 4e-3  # m
+
+
+#: the sections whose keys include the set-up kinds' own, and each kind's attribute for them
+KIND_SECTIONS = {"load": "load_settings", "steps": "step_settings"}
+
+
+def _kind_defaults(section: str) -> dict[str, Any]:
+    """Every registered set-up kind's own settings of ``section`` at their defaults, by kind."""
+    from .kinds.registry import registered  # with the package: the built-in kinds registered
+
+    return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in registered()}
+
+
+class WithKinds:
+    """A section holding the settings every set-up kind shares (its fields) and, in ``by_kind``,
+    each registered kind's own (``SetupKind.load_settings``, ``step_settings``); all of them read
+    flat, as the case file writes them (``load.zone``)."""
+
+    by_kind: Mapping[str, Any]
+
+    def __getattr__(self, name: str) -> Any:
+        for own in self.__dict__.get("by_kind", {}).values():
+            if name in own.__dataclass_fields__:
+                return getattr(own, name)
+        raise AttributeError(f"{type(self).__name__} has no setting {name!r}")
+
+    def items(self) -> list[tuple[str, Any]]:
+        """Every setting as (key, value): the common ones, then each kind's own."""
+        common = [(f.name, getattr(self, f.name)) for f in fields(self) if f.name != "by_kind"]
+        own = [(f.name, getattr(s, f.name)) for s in self.by_kind.values() for f in fields(s)]
+        return common + own
+
+    def with_values(self, **values):
+        """A copy with ``values`` (common or kinds' settings) changed."""
+        by_kind = {}
+        for name, own in self.by_kind.items():
+            mine = {k: values.pop(k) for k in list(values) if k in own.__dataclass_fields__}
+            by_kind[name] = replace(own, **mine)
+        return replace(self, **values, by_kind=by_kind)
+
+
+@dataclass(frozen=True)
+class LoadSettings(WithKinds):
+    kind: str = "saddle"  # a registered set-up kind (``strand.app.kinds``)
+    tension: float = 40e3  # N
+    cycle: tuple[float, ...] = (1.0, 0.0, -1.0, 0.0)
+    direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    sweep: tuple[float, ...] = ()  # amplitudes (N or 1/m), each cycled from one tensioned state
+    by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "load"), hash=False)
+
+
+@dataclass(frozen=True)
+class StepSettings(WithKinds):
+    tension: float = 1e3  # N
+    growth: float = 1.5
+    cuts: int = 6
+    max_iterations: int = 12
+    stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
+    line_search: str = "cp"  # NewtonOptions.linesearch (docs/theory.md §6)
+    tolerance: float = 1e-2  # N
+    balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
+    control: str = "growth"  # "growth" after easy solves, or "error": the predictor's miss
+    error_tolerance: float = 1e-6  # m, "error" control: the step's miss aimed at (ErrorControl)
+    retry: bool = True  # retry a failed step once with the other predictor before halving
+    predictor: bool = True  # start each solve from the secant predictor of the ramp's last step
+    iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
+    by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
+
+
+#: PETSc's line searches for Newton (``[steps] line_search``)
+LINE_SEARCHES = ("cp", "basic", "bt", "l2")
+#: ``[steps] control``: growth after easy solves, or the predictor-miss controller (``ErrorControl``)
+STEP_CONTROLS = ("growth", "error")
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    folder: str = "results/cardinal"
+    fields: bool = True
+    vtx: bool = True
+    plots: bool = True
+    checkpoint: bool = True  # checkpoint.h5 (last converged state) and tensioned.h5
+
+
+@dataclass(frozen=True)
+class FatigueSettings:
+    outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
+    sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES) or "custom"
+    sn_A: float = 450.0  # MPa, custom: σ_a = A N^b up to the knee
+    sn_b: float = -0.2
+    sn_knee: float = 2e7  # cycles
+    sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
+    sn_b2: float = -0.17
+    sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
+    steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, or "none"
+    surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
+    clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
+    end_zone: float = 0.0  # m, clamp zone at each end; 0: one lay length of the outer layer
+    stuck_slip: float = 1e-9  # m, a pair whose Coulomb slide stays below this stuck throughout
+    breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
+    spectrum: tuple[tuple[float, float], ...] = ()  # [[amplitude, cycles], ...]: run as the sweep
+
+    def curve(self):
+        """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
+        from ..fatigue.sn import SN_CURVES, SNCurve
+
+        if self.sn_curve == "custom":
+            return SNCurve("custom (case file)", self.sn_A, self.sn_b, self.sn_knee, self.sn_A2,
+                           self.sn_b2, "the case file")  # fmt: skip
+        return SN_CURVES[self.sn_curve]
+
+    def layers(self, cable: Cable) -> list[int]:
+        """The layers (0 = core) whose wires the S–N curve applies to."""
+        if self.sn_layers:
+            return [int(i) for i in self.sn_layers]
+        return [i for i, lay in enumerate(cable.layers) if lay.wire.E < 100e9]
+
+    def curves(self, cable: Cable) -> list:
+        """Per layer (0 = core), its wires' S–N curve, or None (not assessed): ``sn_curve`` on
+        ``layers``, ``steel_sn_curve`` on the other steel layers (E ≥ 100 GPa)."""
+        from ..fatigue.sn import SN_CURVES, wire_material
+
+        mine, steel = self.layers(cable), SN_CURVES.get(self.steel_sn_curve)
+        return [
+            self.curve() if i in mine
+            else steel if wire_material(lay.wire.E) == "steel" else None
+            for i, lay in enumerate(cable.layers)
+        ]  # fmt: skip
+
+    def end_zone_length(self, cable: Cable) -> float:
+        """The clamp zone's length at each end (m): ``end_zone``, or one lay length of the outer
+        layer (the core's length 0 for a bare core)."""
+        if self.end_zone > 0:
+            return self.end_zone
+        pitch = cable.layers[-1].pitch
+        return pitch if math.isfinite(pitch) else 0.0
+
+
+@dataclass(frozen=True)
+class Case:
+    cable: Cable
+    mesh: MeshSettings = field(default_factory=MeshSettings)
+    contact: ContactSettings = field(default_factory=ContactSettings)
+    load: LoadSettings = field(default_factory=LoadSettings)
+    steps: StepSettings = field(default_factory=StepSettings)
+    output: OutputSettings = field(default_factory=OutputSettings)
+    fatigue: FatigueSettings = field(default_factory=FatigueSettings)
+    source: str = "built-in default"
+    #: the ``[load]`` settings a run needs that the case leaves at their defaults (Cardinal's)
+    #: although its cable is not a built-in one (``check_loads_given``)
+    unset_loads: tuple[str, ...] = ()
+
+
+#: the sections of a case file after ``cable``, and their settings classes
+SECTIONS = {
+    "mesh": MeshSettings,
+    "contact": ContactSettings,
+    "load": LoadSettings,
+    "steps": StepSettings,
+    "output": OutputSettings,
+    "fatigue": FatigueSettings,
+}

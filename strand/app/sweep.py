@@ -1,0 +1,179 @@
+"""Sweeps: the cycle of a case at several amplitudes (``[load] sweep``), each from the same
+tensioned state, and the table that compares them (``sweep.csv``, ``sweep.txt``): effort, the
+set-up kind's measure (``SetupKind.measure``) at the peak and back at zero load, and, with the
+fatigue outputs, what answers the fatigue question per amplitude (``fatigue_columns``): the
+largest surface stress range per layer in the free span and the clamp zone, the worst crossing's
+(and line contact's) Ruiz F₂ and slip amplitude per zone, the largest Miner damage per zone and Poffenberger–Swart's
+ratio (NaN where skipped). A case with a ``[fatigue] spectrum`` runs its amplitudes as the sweep
+and gets Miner's sum over them (``strand.app.fatigue.spectrum``)."""
+
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..model.checkpoint import restore
+from ..model.parallel import is_root, on_root, root_stream
+from ..model.programme import LoadProgramme, Position
+from .build import build_problem, results_folder, settings_text, setup_and_programme
+from .folder import FolderError, writable_folder
+from .kinds import kind_of
+from .run_result import RunResult, Start
+from .runner import run_programme_with_outputs
+from .settings import Case
+
+__all__ = ["run_sweep", "SweepTable", "sweep_table", "fatigue_columns"]
+
+
+def run_sweep(
+    case: Case, folder: str | Path | None = None, stream=None, overwrite: bool = False
+) -> list[RunResult]:
+    """Run the cycle of ``case`` at every amplitude of ``[load] sweep`` from one tensioned state:
+    the tension once, into ``folder``/tension, then each amplitude restored from that state
+    into ``folder``/<parameter>_<amplitude>, each with all its outputs (its first row is the
+    tensioned state); ``sweep.csv`` and ``sweep.txt`` in ``folder`` compare them."""
+    stream = root_stream(stream or sys.stdout)
+    t0 = time.perf_counter()
+    folder = Path(folder or case.output.folder)
+    kind = kind_of(case)
+    parameter = kind.parameter
+    names = {a: f"{parameter}_{a:g}" for a in case.load.sweep}
+    top = on_root(lambda: _sweep_folder(folder, overwrite, case))
+    folders = {
+        key: results_folder(case, top / key, overwrite) for key in ["tension", *names.values()]
+    }
+    problem, programme = build_problem(case, stream)
+    results = []
+    try:
+        tension = LoadProgramme(programme.stages[:1], parameter)
+        print(f"--- sweep: tension, then {parameter} amplitudes {list(case.load.sweep)} ---",
+              file=stream, flush=True)  # fmt: skip
+        tensioned = run_programme_with_outputs(
+            case, problem, tension, folders["tension"], stream, keep=lambda s: True
+        )
+        if tensioned.failure:
+            return [tensioned]
+        state, last = tensioned.kept, tensioned.steps[-1]
+        for amplitude, name in names.items():
+            member = kind.with_amplitude(case, amplitude)
+            _, member_programme = setup_and_programme(member)
+            print(f"--- sweep: {parameter} amplitude {amplitude:g} ---", file=stream, flush=True)
+            restore(problem, state)
+            start = Start(Position(1, None), last)
+            results.append(
+                run_programme_with_outputs(
+                    member, problem, member_programme, folders[name], stream, start
+                )  # fmt: skip
+            )
+            if results[-1].interrupted:
+                break
+    finally:
+        problem.solver.destroy()
+    table = sweep_table(case, parameter, problem.setup.units[parameter], results)
+    if is_root():
+        (top / "sweep.csv").write_text(table.csv)
+        (top / "sweep.txt").write_text(
+            table.text + f"sweep wall time {time.perf_counter() - t0:.0f} s\n"
+        )
+    print(table.text, file=stream, flush=True)
+    if case.fatigue.spectrum and is_root():
+        from .fatigue.spectrum import write_spectrum
+
+        text = write_spectrum(top, case, results, parameter, problem.setup.units[parameter])
+        print(text, file=stream, end="", flush=True)
+    return [tensioned, *results]
+
+
+def _sweep_folder(folder: Path, overwrite: bool, case: Case) -> Path:
+    """The sweep's own folder: it holds the members' folders and the sweep table."""
+    path = writable_folder(folder)
+    marker = path / "sweep.txt"  # written first
+    others = [p for p in path.iterdir() if not p.name.startswith(".") and p.is_file()]
+    if others and not marker.exists():
+        raise FolderError(f"{path}: holds files that are not a strand sweep's; give another folder")
+    if marker.exists() and not overwrite:
+        raise FolderError(
+            f"{path}: holds an earlier sweep; give another folder (--out) or replace it "
+            "(--overwrite)"
+        )
+    for p in others:
+        p.unlink()
+    (path / "sweep.txt").write_text(settings_text(case))
+    return path
+
+
+@dataclass(frozen=True)
+class SweepTable:
+    """The sweep's table as text (``sweep.txt``) and as CSV (``sweep.csv``)."""
+
+    text: str
+    csv: str
+
+
+def sweep_table(case: Case, parameter: str, unit: str, results: list[RunResult]) -> SweepTable:
+    """One row per amplitude (of ``parameter``, in ``unit`` as in column names): its effort,
+    what the set-up measured at the peak and back at zero load (the kind's ``measure``) and,
+    where the members have a fatigue report, its ``fatigue_columns``."""
+    head = [f"amplitude_{unit}", "steps", "iterations", "cuts", "seconds"]
+    measure = kind_of(case).measure
+    head += [f"peak_{measure}", f"unloaded_{measure}", "outcome"]
+    fatigue = [fatigue_columns(r.fatigue, len(case.cable.layers)) for r in results]
+    names = next((list(f) for f in fatigue if f), [])
+    head += names
+    rows = []
+    for r, f in zip(results, fatigue, strict=True):
+        cycle = r.cycle_steps
+        amp = max((abs(s.load) for s in cycle), default=0.0)
+        peak = r.peak_step
+        zero = r.unloaded_steps
+        rows.append([
+            f"{amp:g}", str(len(cycle)), str(sum(s.iterations for s in cycle)),
+            str(sum(s.cuts for s in cycle)), f"{r.seconds:.1f}",
+            f"{getattr(peak.state, measure):.12g}" if peak else "nan",
+            f"{getattr(zero[0].state, measure):.12g}" if zero else "nan",
+            "interrupted" if r.interrupted else "failed" if r.failure else "done",
+            *(f"{f.get(name, np.nan):.6g}" for name in names),
+        ])  # fmt: skip
+    text = [f"sweep of {parameter} from one tensioned state ({case.load.tension / 1e3:g} kN):",
+            "  " + "  ".join(head)]  # fmt: skip
+    text += ["  " + "  ".join(row) for row in rows]
+    csv_text = "\n".join(",".join(r) for r in [head, *rows]) + "\n"
+    return SweepTable("\n".join(text) + "\n", csv_text)
+
+
+def fatigue_columns(report, n_layers: int) -> dict[str, float]:
+    """What a member's fatigue report (``fatigue.findings.FatigueReport``; None: {}) says about
+    the fatigue question, by column name with its unit: per layer (0: the core) and zone (free
+    span, clamp zone) the largest surface stress range (MPa); per zone the worst crossing by
+    Ruiz's F₂ (MPa J/m²) and its slip amplitude (µm), and the same for the line contacts (their
+    F₂ with the tributary length's contact area, ``worst_line_…``), the largest Miner
+    damage per cycle of a wire (one steady repetition; NaN: none assessed); Poffenberger–Swart's ratio of the model's
+    amplitude to its own (NaN where skipped or without a clamp). NaN where a zone has none."""
+    if report is None:
+        return {}
+    e, w, c = report.elements, report.wires, report.crossings
+    out: dict[str, float] = {}
+    for zone, clamp in (("free", False), ("clamp", True)):
+        for i in range(n_layers):
+            mine = (e["clamp"] == clamp) & (e["layer"] == i)
+            out[f"stress_range_{zone}_layer_{i}_MPa"] = (
+                1e-6 * float(e["range"][mine].max()) if mine.any() else np.nan
+            )
+    for zone, clamp in (("free", False), ("clamp", True)):
+        for kind, line in (("", False), ("line_", True)):
+            mine = np.flatnonzero((c["clamp"] == clamp) & (c["line"] == line))
+            k = mine[np.argmax(c["ruiz_f2"][mine])] if len(mine) else None
+            f2, slip = (np.nan, np.nan) if k is None else (c["ruiz_f2"][k], c["slip_amplitude"][k])
+            out[f"worst_{kind}f2_{zone}_MPa_J_per_m2"] = 1e-6 * f2
+            out[f"worst_{kind}slip_amplitude_{zone}_um"] = 1e6 * slip
+        damage = w[f"damage_{zone}"]
+        out[f"largest_damage_{zone}"] = (
+            np.nan if np.all(np.isnan(damage)) else float(np.nanmax(damage))
+        )
+    ps = report.poffenberger_swart
+    out["ps_ratio"] = ps["ratio"] if ps is not None and ps["holds"] else np.nan
+    return out

@@ -1,0 +1,121 @@
+"""The contact settings of a strand: the case file's ``[contact]`` section (SI units).
+
+They choose the contact normal (``strand.contact.element.resolve_normal``), the laws of the pairs
+(``strand.model.strand_contact.pair_laws``) and small or large sliding
+(``strand.model.strand_contact``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+from ..cable.description import CableError
+from ..contact.element import check_slip, resolve_normal
+from ..contact.errors import ContactError
+from .same_layer import SAME_LAYER, SAME_LAYER_STENCILS
+
+__all__ = ["ContactSettings", "COMPLIANCES"]
+
+COMPLIANCES = ("penalty", "hertz")
+
+
+@dataclass(frozen=True)
+class ContactSettings:
+    """Contact model settings (SI units).
+
+    Attributes:
+        normal: "director" (the seed paper's: rotated nodal tangents), "neighbour"
+            (translation-only, from neighbour chords), "frozen" (initial radial normal), or
+            "auto" (default): "director" with friction, "frozen" without. With friction the two
+            geometry-following normals converge alike and give the same gaps (Cardinal, 4.3 kN:
+            max error 3.7 vs 3.4 µm); "director" keeps 2-node stencils, so its LU is 1.6× cheaper.
+            A frictionless strand has near-zero-energy modes (wires rolling around the layer
+            below) that only the frozen normal's spurious stiffness holds; its gaps are then only
+            approximate in bending (up to 11 µm). See ``strand.contact.kinematics``.
+        compliance: "hertz" (default: contact mechanics from the wires' radii and moduli and the
+            current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
+            contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
+            ``strand.contact.hertz``) or "penalty" (the seed paper's: a penalty K_N, and friction
+            reaching μP after an elastic slip g_lim). k_point, k_line and g_lim apply to "penalty"
+            only. The default has no free parameter: every stiffness follows from the wires.
+        k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
+        k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
+            line pair gets k_line × its tributary length.
+        g_lim: slip at which friction reaches μP (elastic slip, K_T = μP/g_lim), m.
+        friction: use the Coulomb coefficients of the cable (False: frictionless).
+        model: "small" sliding (pairs fixed at t = 0, ``strand.contact.element``) or "large"
+            sliding (pairs re-projected at every iteration, ``strand.contact.sliding``: the
+            baseline).
+        reach: large sliding only: sliding distance reserved either side of each initial pair,
+            m (its window holds every segment of the two wires within reach).
+        same_layer: contact between neighbouring wires of one layer (``strand.model.same_layer``):
+            "off", "nominal" (each layer's gaps from its helices, clipped at touching),
+            "packed" (neighbours touching, the spare circumference in one gap, as stranding
+            leaves a layer whose nominal gaps are of the order of its wires' diameter
+            tolerance), or "auto" (default): "packed". In large sliding each facing point is
+            re-found on the neighbour's centreline within the sliding reach.
+        same_layer_stencil: the nodes a same-layer pair ties in small sliding
+            (``strand.model.same_layer``): "segment" (default: node a to the facing point of the
+            neighbour's segment [b₀, b₁]) or "node" (node a to the neighbour's nearest node c,
+            the gap across c's director tangent and the slip at the facing point, carried by
+            c: two nodes a pair, as the crossings, so each LU of 1 m of Cardinal takes 2.9e10
+            operations instead of 5.3e10 and the main job's window 0.7 of the time; its results
+            differ from the default's by one to twenty times the mesh error,
+            ``benchmarks/stencils.py``). Large sliding re-finds facing points on the
+            centreline.
+        slip: the friction's slip measure between layers (``strand.contact.element``, in large
+            sliding ``strand.contact.sliding_slip``): "surface" (the relative motion of the two
+            surface points in contact: a wire rolls on its neighbour without slip) or
+            "centreline" (the seed paper's: the motion of the centre lines' closest points,
+            blind to a wire's spin: rolling is slip). Same-layer pairs take "surface".
+    """
+
+    normal: str = "auto"
+    compliance: str = "hertz"
+    k_point: float = 5e7
+    k_line: float = 5e9
+    g_lim: float = 5e-6
+    friction: bool = True
+    model: str = "small"
+    reach: float = 1e-3
+    same_layer: str = "auto"
+    same_layer_stencil: str = "segment"
+    slip: str = "surface"
+
+    def __post_init__(self):
+        try:
+            object.__setattr__(self, "normal", resolve_normal(self.normal, self.friction))
+            check_slip(self.slip)
+        except ContactError as e:  # strand.app.case reports CableError as a [contact] error
+            raise CableError(str(e)) from None
+        if self.compliance not in COMPLIANCES:
+            raise CableError(
+                f"contact compliance {self.compliance!r} is unknown; choose "
+                f"{' or '.join(COMPLIANCES)}"
+            )
+        if self.model not in ("small", "large"):
+            raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
+        if self.same_layer == "auto":
+            object.__setattr__(self, "same_layer", "packed")
+        if self.same_layer not in SAME_LAYER:
+            raise CableError(
+                f"contact same_layer {self.same_layer!r} is unknown; choose auto, "
+                f"{', '.join(SAME_LAYER)}"
+            )
+        if self.same_layer_stencil not in SAME_LAYER_STENCILS:
+            raise CableError(
+                f"contact same_layer_stencil {self.same_layer_stencil!r} is unknown; choose "
+                f"{' or '.join(SAME_LAYER_STENCILS)}"
+            )
+        for name in ("k_point", "k_line", "g_lim", "reach"):
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and value > 0):
+                raise CableError(f"contact {name} = {value!r}: must be a positive number")
+        if self.compliance != "penalty":
+            defaults = {f.name: f.default for f in fields(self)}
+            given = [n for n in ("k_point", "k_line", "g_lim") if getattr(self, n) != defaults[n]]
+            if given:
+                raise CableError(
+                    f'contact {", ".join(given)} apply to compliance = "penalty" only (the '
+                    f"{self.compliance} compliance follows from the wires); set one or the other"
+                )

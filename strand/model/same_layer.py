@@ -1,0 +1,284 @@
+"""Contact between neighbouring wires of one layer: where they face each other, and their gaps.
+
+The wires of a helical layer are identical helices turned by 2π/n. Their centre lines come closest
+at a distance D found exactly (``helix_clearance``): D² = min_s 2r²(1 − cos(s + 2π/n)) + (s/ω)²,
+ω = tan α / r the helix's angular rate. D − d is the layer's nominal gap. Cardinal's (from its
+helices): layer 1 −14.1 µm (its six equal steel wires would overlap: they touch one another),
+layers 2–4 +62.0, +78.2, +65.6 µm (``tests/test_same_layer.py`` asserts them).
+
+Each node a of wire j (in order of phase) faces the point of wire j+1's polyline nearest to it,
+at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) is either
+
+* ``"segment"`` (the default): a ``contact.segment.SegmentGroup`` pair [a, b₀, b₁] with the
+  weight ξ and the centre-to-centre normal across the neighbour's chord (``neighbour``); or
+* ``"node"``: a line pair of ``contact.element.ContactGroup`` [c, a] with the node c of the
+  segment nearest the facing point, the gap a's distance from the line of c's director tangent
+  (``director``), and the slip of the facing point, ``offset`` s along that tangent, carried by
+  c's section: two nodes, so the LU does not tie every node to its neighbours' segments
+  (docs/theory.md §3.4).
+
+Neither normal changes the gap under rigid rotations (a frozen normal closes it by d ω²/2). The
+normal law is the Hertz line law over the node's tributary length of wire (with a C¹ onset,
+``contact.laws.SmoothOnset``: these pairs start touching without load), the friction Mindlin's
+with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
+
+* ``"nominal"``: every neighbour at the layer's nominal gap, clipped at 0 (a layer whose helices
+  would overlap is taken as touching: stranding puts its wires side by side);
+* ``"packed"``: every neighbour touching, and the layer's spare circumference, n times its
+  nominal gap, gathered in the one gap between its last and first wires, as stranding leaves
+  wires bunched.
+
+In large sliding (``[contact] model = "large"``) the same pairs are line pairs of
+``strand.contact.sliding``: node a against the neighbour's C¹ centreline, its facing point
+re-found at every iteration within the sliding reach either side of the segment it starts on
+(``strand_contact.same_layer_sliding_groups``), with the same gaps, laws and surface slip. The
+facing point must be re-found: on the main job (Cardinal, 1 m, 40 kN, ±4.3 kN saddle, packed
+layers, segments of 0.8–4.0 mm) the facing points move along their neighbours by up to 16 µm
+at 40 kN, 0.8 % of their segments, but by up to 0.14 mm at the largest saddle load, 7 % of a
+segment (``facing_point_motion`` on that run's tensioned state and on its fields there): a
+facing point that starts near a node passes onto the next segment. The default reach, 1 mm,
+holds them. Re-found facing points also lie on the neighbour's curve where the small-sliding
+ones lie on its chord: on a tensioned 1+6 the small-sliding pairs carry 2 % less force at
+h = 4 mm, 1 % less at 2 mm (an O(h) error; ``tests/test_sliding_variants.py``).
+
+Units: m, N.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from ..cable.description import Layer
+from ..cable.geometry import StrandGeometry
+from ..contact.element import ContactGroup
+from ..contact.hertz import compliance, mindlin_ratio
+from ..contact.kinematics import rotation_matrix
+from ..contact.laws import (
+    ElasticSlip,
+    FrictionLaw,
+    HertzLineLaw,
+    Mindlin,
+    NormalLaw,
+    PenaltyLaw,
+    SmoothOnset,
+)
+from ..contact.pairs import closest_on_segments
+from ..contact.segment import SegmentGroup
+from .partition import owned_rows
+
+__all__ = [
+    "SAME_LAYER",
+    "SAME_LAYER_STENCILS",
+    "SameLayerPairs",
+    "helix_clearance",
+    "same_layer_pairs",
+    "same_layer_laws",
+    "same_layer_groups",
+    "facing_point_motion",
+]
+
+Array = npt.NDArray[np.float64]
+Int = npt.NDArray[np.int64]
+
+#: choices of ``[contact] same_layer``
+SAME_LAYER = ("off", "nominal", "packed")
+#: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], or node a to the
+#: neighbour's nearest node c [c, a]
+SAME_LAYER_STENCILS = ("segment", "node")
+
+
+def helix_clearance(layer: Layer) -> float:
+    """The smallest distance between the centre lines of two neighbouring wires of ``layer``, m
+    (golden-section search over the phase lag s ∈ [−2π/n, 0], to round-off)."""
+    r, n = layer.radius, layer.wires
+    omega = np.tan(layer.alpha) / r
+    step = 2 * np.pi / n
+
+    def square(s):
+        return 2 * r * r * (1 - np.cos(s + step)) + (s / omega) ** 2
+
+    lo, hi = -step, 0.0
+    golden = (np.sqrt(5) - 1) / 2
+    for _ in range(200):
+        a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        if square(a) < square(b):
+            hi = b
+        else:
+            lo = a
+    return float(np.sqrt(square(0.5 * (lo + hi))))
+
+
+@dataclass(frozen=True)
+class SameLayerPairs:
+    """Node-to-segment pairs between neighbouring wires of the helical layers (input points).
+
+    Attributes:
+        a, b0, b1: (P,) node a and the segment (b₀, b₁) of the next wire that faces it.
+        weight: (P,) ξ of the facing point on the segment.
+        normal: (P, 3) unit normals a → facing point at t = 0.
+        gap: (P,) initial gaps, m.
+        tributary: (P,) length of wire a each pair stands for, m.
+        layer: (P,) the layer.
+        nearest: (P,) the node of the segment nearest the facing point, c.
+        offset: (P,) where the facing point lies from c along the neighbour's tangent, m.
+        stencil: the pairs' stencil, one of ``SAME_LAYER_STENCILS``.
+    """
+
+    a: Int
+    b0: Int
+    b1: Int
+    weight: Array
+    normal: Array
+    gap: Array
+    tributary: Array
+    layer: npt.NDArray[np.int32]
+    nearest: Int
+    offset: Array
+    stencil: str = "segment"
+
+    def __len__(self) -> int:
+        return len(self.a)
+
+    @property
+    def stencils(self) -> Int:
+        """Input nodes of each pair, anchor first: (P, 3) [a, b₀, b₁] or (P, 2) [c, a]."""
+        if self.stencil == "node":
+            return np.column_stack([self.nearest, self.a])
+        return np.column_stack([self.a, self.b0, self.b1])
+
+
+def _wire_pairs(geometry: StrandGeometry, w: int, w_next: int):
+    """Each node of wire ``w`` against the nearest point of wire ``w_next``'s polyline: nodes a,
+    segments (b₀, b₁), ξ, the vectors a → facing point and the tributary lengths; nodes whose
+    nearest point is an end of the neighbour are left out."""
+    g = geometry
+    pa = np.arange(g.wire_offsets[w], g.wire_offsets[w + 1])
+    pb = np.arange(g.wire_offsets[w_next], g.wire_offsets[w_next + 1])
+    X, s0, s1 = g.points[pa], g.points[pb[:-1]], g.points[pb[1:]]
+    distance, xi = closest_on_segments(X, s0, s1)
+    j = np.argmin(distance, axis=1)
+    t = xi[np.arange(len(pa)), j]
+    keep = ((t > 0) | (j > 0)) & ((t < 1) | (j < len(s0) - 1))  # faces the neighbour's span
+    lengths = np.linalg.norm(np.diff(X, axis=0), axis=1)
+    tributary = 0.5 * (np.r_[0.0, lengths] + np.r_[lengths, 0.0])
+    facing = s0[j] + t[:, None] * (s1[j] - s0[j]) - X
+    return pa[keep], pb[j][keep], pb[j + 1][keep], t[keep], facing[keep], tributary[keep]
+
+
+def same_layer_pairs(
+    geometry: StrandGeometry, gaps: str = "nominal", stencil: str = "segment"
+) -> SameLayerPairs:
+    """The pairs between neighbouring wires of every helical layer, with ``gaps`` "nominal" or
+    "packed" and the ``stencil`` "segment" or "node" (module docstring)."""
+    if gaps not in SAME_LAYER[1:]:
+        raise ValueError(f"same-layer gaps {gaps!r}: choose nominal or packed")
+    if stencil not in SAME_LAYER_STENCILS:
+        raise ValueError(f"same-layer stencil {stencil!r}: choose segment or node")
+    g = geometry
+    parts = []
+    for i, layer in enumerate(g.cable.layers[1:], start=1):
+        wires = np.flatnonzero(g.wire_layer == i)
+        if len(wires) < 2:
+            continue
+        layer_gap = helix_clearance(layer) - layer.wire.diameter
+        nominal, spare = max(layer_gap, 0.0), len(wires) * layer_gap
+        for k, w in enumerate(wires):
+            a, b0, b1, xi, facing, tributary = _wire_pairs(g, w, wires[(k + 1) % len(wires)])
+            if gaps == "nominal":
+                gap = np.full(len(a), nominal)
+            else:
+                gap = np.full(len(a), max(spare, 0.0) if k == len(wires) - 1 else 0.0)
+            normal = facing / np.linalg.norm(facing, axis=1)[:, None]
+            parts.append((a, b0, b1, xi, normal, gap, tributary, np.full(len(a), i, np.int32)))
+    if not parts:
+        empty, none = np.zeros(0), np.zeros(0, np.int64)
+        return SameLayerPairs(none, none, none, empty, np.zeros((0, 3)), empty, empty,
+                              np.zeros(0, np.int32), none, empty, stencil)  # fmt: skip
+    a, b0, b1, xi, normal, gap, tributary, layer = (
+        np.concatenate(c) for c in zip(*parts, strict=True)
+    )
+    nearest = np.where(xi < 0.5, b0, b1)
+    chord = g.points[b1] - g.points[b0]
+    length = np.linalg.norm(chord, axis=1)
+    offset = np.where(xi < 0.5, xi, xi - 1.0) * length
+    return SameLayerPairs(a, b0, b1, xi, normal, gap, tributary, layer, nearest, offset, stencil)
+
+
+def same_layer_laws(
+    geometry: StrandGeometry, pairs: SameLayerPairs, rows, settings
+) -> tuple[Array, NormalLaw, FrictionLaw | None]:
+    """The wire radii (m) and the laws of the pairs ``rows``: Hertz line contact over their
+    tributary lengths and Mindlin friction ("hertz" compliance), or the line penalty ``k_line``
+    and elastic slip ("penalty"); the normal law with a C¹ onset (``SmoothOnset``)."""
+    layers = geometry.cable.layers
+    wire = [layers[i].wire for i in pairs.layer[rows]]
+    radius = np.array([w.diameter / 2 for w in wire])
+    mu = np.array([layers[i].friction for i in pairs.layer[rows]])
+    if settings.compliance == "penalty":
+        law: NormalLaw = PenaltyLaw(settings.k_line * pairs.tributary[rows])
+        friction = ElasticSlip(mu, settings.g_lim) if settings.friction else None
+    else:
+        c = np.array([compliance(w.E, w.nu) for w in wire])
+        law = HertzLineLaw(radius, radius, c, c, pairs.tributary[rows])
+        E, nu = np.array([w.E for w in wire]), np.array([w.nu for w in wire])
+        friction = Mindlin(mu, mindlin_ratio(E, nu, E, nu)) if settings.friction else None
+    return radius, SmoothOnset(law), friction
+
+
+def same_layer_groups(
+    geometry: StrandGeometry,
+    pairs: SameLayerPairs,
+    input_to_block: npt.NDArray[np.int32],
+    settings,
+    n_owned: int | None = None,
+) -> list[SegmentGroup]:
+    """``pairs`` (``same_layer_pairs``) as one small-sliding ``SegmentGroup`` (none if there are
+    none), with the laws of ``same_layer_laws``. With ``n_owned`` (distributed), the pairs whose
+    node a this rank owns. (Large sliding: ``strand_contact.same_layer_sliding_groups``.)"""
+    rows = np.arange(len(pairs))
+    if n_owned is not None:
+        rows = owned_rows(input_to_block[pairs.stencils], n_owned, "same-layer pairs")
+    if not len(rows):
+        return []
+    radius, law, friction = same_layer_laws(geometry, pairs, rows, settings)
+    if pairs.stencil == "node":
+        c, a = pairs.nearest[rows], pairs.a[rows]
+        tangents = geometry.tangents()
+        return [
+            ContactGroup(
+                input_to_block[pairs.stencils[rows]], geometry.points[np.column_stack([c, a])],
+                True, radius, radius, -pairs.normal[rows], law, friction, "director",
+                tangent0=np.stack([tangents[c], tangents[a]], axis=1), index=rows,
+                initial_gap=pairs.gap[rows], offset=pairs.offset[rows],
+            )
+        ]  # fmt: skip
+    return [
+        SegmentGroup(
+            input_to_block[pairs.stencils[rows]], pairs.weight[rows], radius, radius,
+            pairs.normal[rows], law, friction, initial_gap=pairs.gap[rows], index=rows,
+            normal="neighbour", initial_positions=geometry.points[pairs.stencils[rows]],
+        )
+    ]  # fmt: skip
+
+
+def facing_point_motion(geometry: StrandGeometry, pairs: SameLayerPairs, w: npt.ArrayLike) -> Array:
+    """How far each pair's facing point has moved along the neighbour wire, m (P,): the offset
+    of node a from the facing material point b(ξ) along the neighbour's current tangent, less
+    its value at t = 0, for the nodal unknowns ``w`` (N, 6) in the geometry's order. A rigid
+    motion gives 0; the facing point leaves its segment once this exceeds the room from ξ to
+    the segment's end."""
+    w = np.asarray(w, dtype=float)
+    tangents = geometry.tangents()
+    xi = pairs.weight[:, None]
+
+    def offset(u, theta):
+        x = geometry.points + u
+        t = np.einsum("nij,nj->ni", rotation_matrix(theta), tangents)
+        t_b = (1 - xi) * t[pairs.b0] + xi * t[pairs.b1]
+        d = (1 - xi) * x[pairs.b0] + xi * x[pairs.b1] - x[pairs.a]
+        return np.einsum("pi,pi->p", d, t_b) / np.linalg.norm(t_b, axis=1)
+
+    return offset(w[:, :3], w[:, 3:]) - offset(0 * w[:, :3], 0 * w[:, 3:])

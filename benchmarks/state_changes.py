@@ -24,18 +24,11 @@ from collections import defaultdict
 
 import numpy as np
 from mpi4py import MPI
+from window import WINDOW  # the main job's window (this folder, the script's first path)
 
 from strand.contact.group import PairGroup
 from strand.model.model import StrandModel
 from strand.solver import LoadStepper
-
-WINDOW = [
-    "load.cycle=[1.0]",
-    "output.fields=false",
-    "output.plots=false",
-    "output.checkpoint=false",
-    "fatigue.outputs=false",
-]
 
 #: (stage, interface) -> counts
 COUNTS: dict = defaultdict(lambda: defaultdict(float))

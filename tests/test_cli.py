@@ -134,6 +134,7 @@ def test_ctrl_c_stops_at_the_last_converged_step_and_keeps_everything(tmp_path):
     assert "interrupted" in text
     summary = (out / "summary.txt").read_text()
     assert summary.startswith("INTERRUPTED:") and "stopped: leg" in summary
+    assert f"The steps up to the last converged one are written in {out}." in summary
     assert not list(out.glob("fields*"))  # output.fields = false: no field files
     with open(out / "steps.csv") as f:
         steps = list(csv.DictReader(f))

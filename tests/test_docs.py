@@ -23,6 +23,7 @@ def built(tmp_path_factory):
     pytest.importorskip("sphinx")
     pytest.importorskip("myst_parser")
     pytest.importorskip("jupytext")
+    pytest.importorskip("sphinx-mathjax-offline")
     out = tmp_path_factory.mktemp("html")
     run = subprocess.run(
         [sys.executable, "-m", "sphinx", "-E", "-W", "--keep-going", "-q", "-b", "html",
@@ -40,6 +41,25 @@ def test_docs_build_without_warnings_and_document_the_api(built):
         assert f'id="{name}"' in api or f".{name}" in api, name
     theory = (built / "theory.html").read_text()
     assert "Stick–slip bending law" in theory and "How far small sliding holds" in theory
+
+
+def test_the_docs_need_no_network_for_their_scripts_and_maths(built):
+    """No page loads a script from elsewhere (MathJax from a CDN left the maths as raw TeX
+    offline); the MathJax the pages load is in the build, with its fonts."""
+    remote, mathjax = [], set()
+    for page in built.rglob("*.html"):
+        for src in re.findall(r'<script\b[^>]*\bsrc="([^"]*)"', page.read_text()):
+            if re.match(r"(https?:)?//", src):
+                remote.append(f"{page.relative_to(built)}: {src}")
+            elif "mathjax" in src.lower():
+                mathjax.add((page.parent / src.split("?")[0]).resolve())
+    assert remote == []
+    assert len(mathjax) == 1, mathjax  # one MathJax, every page's relative path to it
+    script = mathjax.pop()
+    assert script.is_file() and script.stat().st_size > 500_000, script  # all of tex-chtml.js
+    assert list((script.parent / "output" / "chtml" / "fonts" / "woff-v2").glob("*.woff"))
+    theory = (built / "theory.html").read_text()
+    assert "mathjax" in theory.lower() and theory.count('class="math') >= 20
 
 
 def test_every_module_has_an_api_page():

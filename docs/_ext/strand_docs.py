@@ -156,6 +156,31 @@ def generate(app) -> None:
             stale.unlink()
 
 
+def prose_first_clause(app, what, name, obj, options, lines) -> None:
+    """Put back the first clause of an attribute's or constant's docstring that napoleon took
+    for its type.
+
+    Napoleon reads "X: Y" on the first line of such a docstring as a type X and a description
+    Y, so that a ``#:`` comment such as "``[steps] control``: growth after easy solves, ..."
+    rendered as a "Type:" field under the clause that follows. strand writes its docstrings as
+    prose, never in that form: the clause goes back in front of its sentence. Connected after
+    napoleon (priority 600 > 500)."""
+    if what not in ("attribute", "data", "property"):
+        return
+    typed = [i for i, line in enumerate(lines) if line.startswith(":type: ")]
+    if not typed:
+        return
+    clause = lines.pop(typed[-1])[len(":type: ") :]
+    while lines and not lines[-1].strip():
+        lines.pop()
+    first = next((i for i, line in enumerate(lines) if line.strip()), None)
+    if first is None:
+        lines.append(clause)
+    else:
+        lines[first] = f"{clause}: {lines[first]}"
+
+
 def setup(app):
     app.connect("builder-inited", generate)
+    app.connect("autodoc-process-docstring", prose_first_clause, priority=600)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -1,6 +1,6 @@
-"""Sphinx configuration: MyST pages with real maths, the API from the docstrings, and pages
-generated at build time (``_ext/strand_docs.py``: the settings reference from the settings
-classes, the demos as tutorials)."""
+"""Sphinx configuration: MyST pages with real maths (MathJax shipped with the pages), the API
+from the docstrings, and pages generated at build time (``_ext/strand_docs.py``: the settings
+reference from the settings classes, the demos as tutorials)."""
 
 import sys
 from pathlib import Path
@@ -19,6 +19,8 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
+    # MathJax in the build (_static/mathjax), not from a CDN: the maths renders offline
+    "sphinx-mathjax-offline",
     "strand_docs",
 ]
 myst_enable_extensions = ["dollarmath", "amsmath"]

@@ -55,6 +55,33 @@ def test_bad_input_gets_one_line_and_nothing_is_computed(tmp_path, seven, capsys
     assert sorted(tmp_path.rglob("*")) == before  # nothing computed, nothing written
 
 
+def test_run_help_lists_every_setting_of_every_section():
+    """``strand run --help`` lists the settings from the settings classes, the same source as
+    the settings reference: every key of every section, each set-up kind's own too, under its
+    section and with its default."""
+    from dataclasses import fields
+
+    from strand.app.kinds import registered
+    from strand.app.settings import KIND_SECTIONS, SECTIONS
+    from strand.app.settings_reference import default_toml
+
+    done = subprocess.run([sys.executable, "-m", "strand", "run", "--help"],
+                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    text = done.stdout
+    blocks = dict(re.findall(r"^\[(\w+)\]\n(.*?)(?=^\[|^\S|\Z)", text, re.M | re.S))
+    assert list(blocks) == list(SECTIONS)
+    for section, cls in SECTIONS.items():
+        classes = [cls] + [getattr(k, KIND_SECTIONS[section]) for k in registered()
+                           if section in KIND_SECTIONS]  # fmt: skip
+        for f in (f for c in classes for f in fields(c) if f.name != "by_kind"):
+            key = rf"^  {f.name} = {re.escape(default_toml(f))}(\s|$)"
+            assert re.search(key, blocks[section], re.M), (section, f.name)
+    assert re.search(r'^cable = "cardinal" ', text, re.M)
+    assert re.search(r"^  fixed_lateral = 0 +\(kind = \"tension_cycle\"\)", blocks["load"], re.M)
+    assert "minutes" not in text  # the main job's time is the README's to state
+
+
 @pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
 def test_a_read_only_results_folder_is_named(tmp_path, seven, capsys):
     out = tmp_path / "ro"
@@ -134,6 +161,7 @@ def test_ctrl_c_stops_at_the_last_converged_step_and_keeps_everything(tmp_path):
     assert "interrupted" in text
     summary = (out / "summary.txt").read_text()
     assert summary.startswith("INTERRUPTED:") and "stopped: leg" in summary
+    assert f"The steps up to the last converged one are written in {out}." in summary
     assert not list(out.glob("fields*"))  # output.fields = false: no field files
     with open(out / "steps.csv") as f:
         steps = list(csv.DictReader(f))

@@ -327,3 +327,41 @@ def test_beams_pressed_into_each_other_at_t0_start_with_the_default_newton_optio
         np.testing.assert_allclose(w.x.array.reshape(-1, 6)[[a[20], b[20]], 2], [u_a, d_b],
                                    rtol=1e-5)  # fmt: skip
     solver.destroy()
+
+
+def test_friction_starts_each_step_from_the_last_commit():
+    """Beam b pressed onto beam a by P, a sheared by s into slip (s = 30 µm, slip from 14 µm),
+    then brought back to 20 µm. Committing every step, the pair unloads along its stick line
+    (Q = μP − k·10 µm); committing the pressing only, friction is measured from there, path-
+    independent, and retraces loading (Q stays μP); committing nothing leaves the stick
+    stiffness μP/g_lim at the committed P = 0: no friction. Newton converges in all three
+    (the library guide's account of ``problem.commit``)."""
+    mu, P = 0.3, 50.0
+    Q = {}
+    for commits in ("every step", "pressing", "none"):
+        V, a, b = two_beams([0.0, 1.0, 0.0], 0.0, length=0.04)
+        w = fem.Function(V)
+        contact = contact_terms(
+            candidate_pairs(V, a, b, R, R, reach=1e-4), PenaltyLaw(1e8), ElasticSlip(mu, 5e-6)
+        )
+        shear = fem.Constant(V.mesh, 0.0)
+        ends = b[[0, -1]]
+        bcs = [fem.dirichletbc(shear, 6 * a, V.sub(0))]
+        bcs += [fem.dirichletbc(0.0, 6 * a + c, V.sub(c)) for c in range(1, 6)]
+        bcs += [fem.dirichletbc(0.0, 6 * ends + c, V.sub(c)) for c in (0, 1, 3, 4, 5)]
+        press = NodalLoad(ends, [[0.0, 0.0, -P / 2, 0.0, 0.0, 0.0]] * 2)
+        beam = ReissnerBeam(w, CircularSection(2 * R, E, NU))
+        problem = NonlinearProblem(beam.residual(), w, bcs, terms=[contact, press])
+        steps = [(press, "factor", f, commits != "none") for f in (0.25, 0.5, 0.75, 1.0)]
+        steps += [(shear, "value", s, commits == "every step")
+                  for s in 1e-6 * np.r_[2:31:2, 28:19:-2]]  # fmt: skip
+        for target, name, value, commit in steps:
+            setattr(target, name, value)
+            assert problem.solve().converged
+            if commit:
+                problem.commit()
+        assert contact.state.force[0] == pytest.approx(P, rel=1e-9)
+        Q[commits] = -contact.state.traction[0, 0] / (mu * P)  # on b, in units of μP
+    assert 0.1 < Q["every step"] < 0.3
+    assert Q["pressing"] == pytest.approx(1.0, rel=1e-9)
+    assert Q["none"] == 0.0

@@ -23,6 +23,7 @@ def built(tmp_path_factory):
     pytest.importorskip("sphinx")
     pytest.importorskip("myst_parser")
     pytest.importorskip("jupytext")
+    pytest.importorskip("sphinx-mathjax-offline")
     out = tmp_path_factory.mktemp("html")
     run = subprocess.run(
         [sys.executable, "-m", "sphinx", "-E", "-W", "--keep-going", "-q", "-b", "html",
@@ -40,6 +41,41 @@ def test_docs_build_without_warnings_and_document_the_api(built):
         assert f'id="{name}"' in api or f".{name}" in api, name
     theory = (built / "theory.html").read_text()
     assert "Stick–slip bending law" in theory and "How far small sliding holds" in theory
+
+
+def test_the_docs_need_no_network_for_their_scripts_and_maths(built):
+    """No page loads a script from elsewhere (MathJax from a CDN left the maths as raw TeX
+    offline); the MathJax the pages load is in the build, with its fonts."""
+    remote, mathjax = [], set()
+    for page in built.rglob("*.html"):
+        for src in re.findall(r'<script\b[^>]*\bsrc="([^"]*)"', page.read_text()):
+            if re.match(r"(https?:)?//", src):
+                remote.append(f"{page.relative_to(built)}: {src}")
+            elif "mathjax" in src.lower():
+                mathjax.add((page.parent / src.split("?")[0]).resolve())
+    assert remote == []
+    assert len(mathjax) == 1, mathjax  # one MathJax, every page's relative path to it
+    script = mathjax.pop()
+    assert script.is_file() and script.stat().st_size > 500_000, script  # all of tex-chtml.js
+    assert list((script.parent / "output" / "chtml" / "fonts" / "woff-v2").glob("*.woff"))
+    theory = (built / "theory.html").read_text()
+    assert "mathjax" in theory.lower() and theory.count('class="math') >= 20
+
+
+def test_attribute_docs_keep_their_first_clause(built):
+    """Napoleon reads "X: Y" at the start of an attribute's docstring as a type X: strand's
+    ``#:`` comments are prose, and their first clause stays in the sentence (it rendered as
+    "Type: stall test" under ``NewtonOptions.stall_after``, in 31 places)."""
+    solver = re.sub(r"<[^>]+>", "", (built / "api" / "solver.html").read_text())
+    assert "stall test: from iteration stall_after on" in solver
+    types = [
+        re.sub(r"<[^>]+>", "", t).strip()
+        for page in (built / "api").glob("*.html")
+        for t in re.findall(r'Type<span class="colon">:</span></dt>\s*<dd[^>]*>(.*?)</dd>',
+                            page.read_text(), re.S)
+    ]  # fmt: skip
+    assert types  # annotations still give types
+    assert [t for t in types if re.search(r"\b(the|a|an|of|in|at|to)\b", t)] == []
 
 
 def test_every_module_has_an_api_page():

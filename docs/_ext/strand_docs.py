@@ -8,10 +8,8 @@ appears in the next build.
 from __future__ import annotations
 
 import inspect
-import io
 import re
-import tokenize
-from dataclasses import MISSING, fields
+from dataclasses import fields
 from pathlib import Path
 
 ROOT = Path(__file__).parents[2]
@@ -21,130 +19,25 @@ GENERATED = "_generated"
 # --- settings reference ---------------------------------------------------------------------
 
 
-def _attributes(cls) -> dict[str, str]:
-    """The ``Attributes:`` section of ``cls``'s docstring (Google style), by name."""
-    doc = inspect.getdoc(cls) or ""
-    if "Attributes:" not in doc:
-        return {}
-    out: dict[str, str] = {}
-    name = None
-    for line in doc.split("Attributes:", 1)[1].splitlines():
-        if line and not line.startswith(" "):
-            break  # the next section
-        m = re.match(r"^ {4}(\w+(?:, \w+)*):\s+(.*)$", line)
-        if m:
-            name = m.group(1)
-            out[name] = m.group(2)
-        elif name and line.strip():
-            out[name] += " " + line.strip()
-    for names in [k for k in out if "," in k]:  # "a, b: ..." documents both
-        for n in names.split(","):
-            out[n.strip()] = out[names]
-    return out
-
-
-def _comments(cls) -> dict[str, str]:
-    """Each field's comment in ``cls``'s source: the comment on its line and the comment lines
-    right under it, indented further."""
-    out: dict[str, str] = {}
-    current = last = None
-    source = inspect.getsource(cls)
-    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
-        if tok.type == tokenize.NAME and tok.start[1] == 4 and current is None:
-            current = tok.string
-        elif tok.type == tokenize.COMMENT and current:
-            out[current] = tok.string.lstrip("# ")
-        elif tok.type == tokenize.NEWLINE:
-            last, current = current, None
-        elif tok.type == tokenize.COMMENT and tok.start[1] > 4 and last in out:
-            out[last] += " " + tok.string.lstrip("# ")
-        elif tok.type not in (tokenize.NL, tokenize.COMMENT):
-            last = None if tok.type != tokenize.NAME else last
-    return out
-
-
-def _template_comments(doc: str) -> dict[tuple[str, str], str]:
-    """The comments of the commented case file in ``strand.app.case``'s docstring, by (section,
-    key): the comment on the key's line and the comment lines indented under it."""
-    out: dict[tuple[str, str], str] = {}
-    section, key = "", None
-    for line in doc.splitlines():
-        s = line.strip()
-        if m := re.match(r"^\[(\w+)\]$", s):
-            section, key = m.group(1), None
-        elif m := re.match(r"^(\w+)\s*=\s*[^#]*#\s*(.*)$", s):
-            key = m.group(1)
-            out[(section, key)] = m.group(2)
-        elif re.match(r"^\w+\s*=", s):
-            key = None
-        elif s.startswith("#") and key and line.startswith("    " * 2):
-            out[(section, key)] += " " + s.lstrip("# ")
-    return out
-
-
-def _default(f) -> str:
-    if f.default is not MISSING:
-        value = f.default
-    elif f.default_factory is not MISSING:
-        value = f.default_factory()
-    else:
-        return "required"
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, tuple):
-        return "[" + ", ".join(repr(v) for v in value) + "]"
-    if isinstance(value, str):
-        return f'"{value}"'
-    if isinstance(value, float):
-        return re.sub(r"e([+-])0*(\d)", lambda m: "e" + m[1].strip("+") + m[2], f"{value:.6g}")
-    return repr(value)
-
-
 def _cell(text: str) -> str:
     return text.replace("|", "\\|").replace("\n", " ")
 
 
-def _longer(template: str, comment: str) -> str:
-    """The fuller of a setting's two comments (the case template's and the class's); a template
-    comment that runs on into the next key's is left out."""
-    if template.endswith((",", " with")):
-        template = ""
-    return max(template, comment, key=len) or "—"
-
-
-def _table(section: str, classes, template: dict, skip=("by_kind",)) -> list[str]:
-    lines = ["| setting | default | meaning |", "|---|---|---|"]
-    for cls, kind in classes:
-        attributes, comments = _attributes(cls), _comments(cls)
-        for f in fields(cls):
-            if f.name in skip:
-                continue
-            text = attributes.get(f.name) or _longer(
-                template.get((section, f.name), ""), comments.get(f.name, "")
-            )
-            if kind:
-                text = f"*{kind} only.* {text}"
-            lines.append(f"| `{f.name}` | `{_cell(_default(f))}` | {_cell(text)} |")
-    return lines
-
-
 def settings_reference() -> str:
-    """The settings reference page (MyST), from ``strand.app.settings.SECTIONS``, the registered
-    set-up kinds' own settings and the cable's fields."""
-    import strand.app.case
-    from strand.app import kinds
-    from strand.app.settings import KIND_SECTIONS, SECTIONS
+    """The settings reference page (MyST), from ``strand.app.settings_reference``: the sections'
+    settings (the registered set-up kinds' own too) and the cable's fields."""
+    from strand.app.settings_reference import default_toml, field_comments, sections
     from strand.cable import description as cable
 
-    template = _template_comments(strand.app.case.__doc__)
     out = [
         "# Settings reference",
         "",
         "Every setting of a case file, with its default and meaning, generated when the docs are",
         "built from the settings classes (their fields, defaults, `Attributes:` docstrings and",
-        "comments). SI units. A case file lists only what it changes; `strand run case.toml --set",
-        "section.key=value` changes one from the command line. Unknown keys and bad values stop",
-        "the run before anything is computed, naming the file and the key.",
+        "comments), as `strand run --help` lists them. SI units. A case file lists only what it",
+        "changes; `strand run case.toml --set section.key=value` changes one from the command",
+        "line. Unknown keys and bad values stop the run before anything is computed, naming the",
+        "file and the key.",
         "",
         "## `cable`",
         "",
@@ -155,7 +48,7 @@ def settings_reference() -> str:
         "| key | in | meaning |",
         "|---|---|---|",
     ]
-    comments = {**_comments(cable.Wire), **_comments(cable.Layer)}
+    comments = {**field_comments(cable.Wire), **field_comments(cable.Layer)}
     names = {"diameter": "wire diameter", "E": "Young's modulus", "nu": "Poisson's ratio",
              "wires": "number of wires", "lay_angle": "lay angle", "lay": "lay hand"}  # fmt: skip
     keys = [f.name for f in fields(cable.Wire)] + [f.name for f in fields(cable.Layer)]
@@ -166,18 +59,16 @@ def settings_reference() -> str:
         )  # fmt: skip
         text = ", ".join(t for t in (names.get(key), comments.get(key)) if t and t != "-")
         out.append(f"| `{key}` | {where} | {_cell(text)} |")
-    optional = [f.name for f in fields(cable.Wire) if _default(f) != "required"]
+    optional = [f.name for f in fields(cable.Wire) if default_toml(f) != "required"]
     out += ["", f"Every key is required but {', '.join(f'`{k}`' for k in optional)}."]
-    for section, cls in SECTIONS.items():
+    for section, (doc, settings) in sections().items():
         out += ["", f"## `[{section}]`", ""]
-        doc = (inspect.getdoc(cls) or "").split("\n\n")[0]
-        if doc and "Attributes:" not in doc and not doc.startswith(f"{cls.__name__}("):
+        if doc:
             out += [doc, ""]
-        classes = [(cls, "")]
-        if section in KIND_SECTIONS:
-            own = KIND_SECTIONS[section]
-            classes += [(getattr(k, own), f'`kind = "{k.name}"`') for k in kinds.registered()]
-        out += _table(section, classes, template)
+        out += ["| setting | default | meaning |", "|---|---|---|"]
+        for s in settings:
+            text = f'*`kind = "{s.kind}"` only.* {s.meaning}' if s.kind else s.meaning
+            out.append(f"| `{s.name}` | `{_cell(s.default)}` | {_cell(text)} |")
     return "\n".join(out) + "\n"
 
 
@@ -265,6 +156,31 @@ def generate(app) -> None:
             stale.unlink()
 
 
+def prose_first_clause(app, what, name, obj, options, lines) -> None:
+    """Put back the first clause of an attribute's or constant's docstring that napoleon took
+    for its type.
+
+    Napoleon reads "X: Y" on the first line of such a docstring as a type X and a description
+    Y, so that a ``#:`` comment such as "``[steps] control``: growth after easy solves, ..."
+    rendered as a "Type:" field under the clause that follows. strand writes its docstrings as
+    prose, never in that form: the clause goes back in front of its sentence. Connected after
+    napoleon (priority 600 > 500)."""
+    if what not in ("attribute", "data", "property"):
+        return
+    typed = [i for i, line in enumerate(lines) if line.startswith(":type: ")]
+    if not typed:
+        return
+    clause = lines.pop(typed[-1])[len(":type: ") :]
+    while lines and not lines[-1].strip():
+        lines.pop()
+    first = next((i for i, line in enumerate(lines) if line.strip()), None)
+    if first is None:
+        lines.append(clause)
+    else:
+        lines[first] = f"{clause}: {lines[first]}"
+
+
 def setup(app):
     app.connect("builder-inited", generate)
+    app.connect("autodoc-process-docstring", prose_first_clause, priority=600)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

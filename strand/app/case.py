@@ -53,8 +53,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     curvature = 0.005         # 1/m, bending: first curvature increment of each leg
     curvature_max = 0.05      # 1/m, bending: largest curvature increment
     growth = 1.5
-    control = "growth"        # growth: ×growth after easy solves | error: from the predictor's
-    error_tolerance = 1e-6    #   miss (m) aimed at by each step
+    control = "growth"        # growth: ×growth after easy solves | error: from the predictor's miss
+    error_tolerance = 1e-6    # m, error control: the predictor's miss aimed at by each step
     retry = true              # retry a failed step once with the other predictor, then halve
     predictor = true          # start each Newton solve of a ramp (tension, legs) from the secant
                               # predictor of its last step; false: from the last converged state
@@ -68,7 +68,7 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     line_search = "cp"        # Newton's line search: PETSc's cp (critical point: one secant
                               # step along each Newton direction), or basic (full steps), bt, l2
     tolerance = 1e-2          # N, absolute residual tolerance (2.5e-7 of the tension)
-    balance = 1e-4            # or converged when no node is out of balance by more than this
+    balance = 1e-4            # also converged when no node is out of balance by more than this
                               # fraction of the mean wire tension T/n (66 mN here), nor by that
                               # force × the largest wire diameter in moment; 0: off
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import textwrap
 import time
 
 import numpy as np
@@ -16,7 +17,7 @@ USAGE = """\
 strand run  case.toml     the main job: tension, then the case's cycle; writes fields, CSV tables,
                           figures and the whole case (case.toml) into its results folder
 strand run  cardinal      the built-in case: the seed paper's saddle test on Cardinal, 1 m, 40 kN
-                          (several minutes, ~370 MB of results in results/cardinal)
+                          (~370 MB of results in results/cardinal; its time: the README, `make run`)
 strand mesh [case.toml]   build the strand mesh and contact pairs, print the table, draw them
 strand compare case.toml | cardinal
                           run the case with small- and large-sliding contact; compare forces,
@@ -110,7 +111,7 @@ def _case_to_run(args, parser):
         print(
             f"strand {args.command}: give a case file, or '{DEFAULT_CASE}' for the built-in case "
             f"(strand {args.command} {DEFAULT_CASE}: the seed paper's test on Cardinal, 1 m, "
-            "40 kN; several minutes and ~370 MB of results)",
+            "40 kN; ~370 MB of results, and the time the README gives for `make run`)",
             file=sys.stderr,
         )
         return None
@@ -172,6 +173,22 @@ def _spectrum(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose description may end with the text of ``more_description()``,
+    made only when the help is printed (``strand run``'s settings: they import every set-up
+    kind, and with them dolfinx)."""
+
+    def __init__(self, *args, more_description=None, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.more_description = more_description
+
+    def format_help(self) -> str:
+        if self.more_description is not None:
+            self.description = (self.description or "") + self.more_description()
+            self.more_description = None
+        return super().format_help()
+
+
 def main(argv: list[str] | None = None) -> int:
     from ..model.parallel import abort_on_error
 
@@ -182,15 +199,20 @@ def main(argv: list[str] | None = None) -> int:
     from .. import __version__
 
     parser.add_argument("--version", action="version", version=f"strand {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True)
-    from . import case as case_module
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    from .settings_reference import help_text
 
     run = sub.add_parser(
         "run",
         help=f"tension then the case's cycle ({DEFAULT_CASE!r}: the seed paper's test)",
-        description="Run a tension-bending case. Every setting lives in a TOML case file; a case "
-        "lists only what it changes. Settings and defaults:\n\n"
-        + case_module.__doc__.split("::", 1)[1].split("Unknown keys")[0],
+        description=textwrap.fill(
+            "Run a tension-bending case. Every setting lives in a TOML case file; a case lists "
+            "only what it changes, and --set section.key=value changes one more. The settings, "
+            "their defaults and what they mean (in full: the settings reference of the docs):",
+            100,
+        )
+        + "\n\n",
+        more_description=help_text,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     run.add_argument(

@@ -259,14 +259,19 @@ def _take_programme(
                 **step_control(recording.case),
             )  # fmt: skip
     except RunInterrupted as stop:
-        result.failure, result.interrupted = str(stop), True
-        print(f"strand: stopped: {stop}", file=stream, flush=True)
+        result.failure, result.interrupted = f"{stop} {_written(result)}", True
+        print(f"strand: stopped: {result.failure}", file=stream, flush=True)
     except LoadStepFailure as failure:
-        result.failure = str(failure)
-        print(f"strand: step failed: {failure}", file=stream, flush=True)
+        result.failure = f"{failure} {_written(result)}"
+        print(f"strand: step failed: {result.failure}", file=stream, flush=True)
     finally:
         problem.solver.interrupt = None
         recording.close()
+
+
+def _written(result: RunResult) -> str:
+    """What a run that stopped early has written: its steps, in its folder."""
+    return f"The steps up to the last converged one are written in {result.folder}."
 
 
 def _report_and_figures(

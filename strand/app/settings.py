@@ -89,7 +89,7 @@ class LoadSettings(WithKinds):
 @dataclass(frozen=True)
 class StepSettings(WithKinds):
     tension: float = 1e3  # N
-    growth: float = 1.5
+    growth: float = 1.5  # the next increment over this one after a step of at most 6 iterations
     cuts: int = 6
     max_iterations: int = 12
     stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
@@ -124,10 +124,10 @@ class FatigueSettings:
     outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
     sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES) or "custom"
     sn_A: float = 450.0  # MPa, custom: σ_a = A N^b up to the knee
-    sn_b: float = -0.2
+    sn_b: float = -0.2  # custom: the exponent b up to the knee
     sn_knee: float = 2e7  # cycles
     sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
-    sn_b2: float = -0.17
+    sn_b2: float = -0.17  # custom: the exponent b2 beyond the knee
     sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
     steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, or "none"
     surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)

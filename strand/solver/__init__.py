@@ -13,7 +13,7 @@ it. It
 * masks Dirichlet dofs, lifting the stencils' coupling to prescribed motions onto the free
   rows (as dolfinx's ``apply_lifting`` does for the forms),
 * decides convergence by PETSc's default rules, then strand's stall and balance tests
-  (``NewtonOptions``), and
+  (``NewtonOptions``: both off by default, on in strand's own runs), and
 * keeps the last converged state so that a failed step can be rolled back (``LoadStepper``).
 
 Modules: ``terms`` (the pair terms and their assembly), ``convergence`` (Newton's settings and

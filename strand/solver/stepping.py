@@ -129,11 +129,13 @@ def _all_ranks_max(solver, value: float) -> float:
 
 
 class LoadStepFailure(RuntimeError):
-    """A load step did not converge even after the allowed step cuts."""
+    """A load step did not converge even after the allowed step cuts. The problem is rolled
+    back to the last converged step; the library writes nothing (``on_step`` wrote what it
+    wrote), so the message says nothing of files: an application adds what it has written."""
 
 
 class RunInterrupted(LoadStepFailure):
-    """The user asked the run to stop (Ctrl-C); the last converged state is kept."""
+    """The user asked the run to stop (Ctrl-C); the problem holds the last converged state."""
 
 
 class LoadStepper:
@@ -218,7 +220,7 @@ class LoadStepper:
             if self.solver.stop_requested():
                 raise RunInterrupted(
                     f"{stage}: interrupted by the user at {current:.6g} (target {end:.6g}). "
-                    "The state at the last converged load is kept and was written."
+                    "The problem holds the state of that last converged load."
                 )
             trial = current + sign * min(step, abs(end - current))
             set_load(trial)
@@ -276,7 +278,7 @@ class LoadStepper:
                         f"after {cuts} step cuts (increment now {step:.3g} < min_step "
                         f"{self.min_step:.3g}; last Newton: {result.reason}, "
                         f"{result.iterations} iterations, residual {result.residual:.3e}). "
-                        "The state at the last converged load is kept and was written."
+                        f"The problem holds the state of the last converged load, {current:.6g}."
                     )
         self.step = step
         return records

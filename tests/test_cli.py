@@ -41,6 +41,10 @@ def seven(tmp_path) -> Path:
         (["{case}", "--set", "load.tension=-5e3"], "compressed strand is outside the model"),
         (["{case}", "--set", "meshh_max"], "expected section.key=value"),
         (["{case}", "--set", "mesh.hmax=1"], r"unknown setting\(s\) in \[mesh\]: \['hmax'\]"),
+        (
+            ["{case}", "--set", "mesh.length=-0.1"],
+            r"\[mesh\] length = -0\.1 m: expected a positive",
+        ),
         (["{case}", "--out", "{case}"], "is a file, not a folder"),
         (["{case}", "--out", "{case}/sub"], "cannot create the results folder"),
     ],

@@ -117,7 +117,7 @@ from typing import Any
 from ..cable.description import Cable, CableError, cable_from_dict, cardinal, judge120, load_cable
 from ..cable.input_file import read_text
 from .errors import CaseError
-from .settings import KIND_SECTIONS, SECTIONS, Case
+from .settings import KIND_SECTIONS, SECTIONS, Case, unit_of
 
 #: ``Case`` (``strand.app.settings``) and ``CaseError`` (``strand.app.errors``) are importable
 #: from here too
@@ -175,7 +175,8 @@ def _numbers(where: str, key: str, value) -> tuple[float, ...]:
 
 def _value(section: str, key: str, value, default, signed: bool = False):
     """``value`` of ``[section] key`` checked against the type of its ``default``."""
-    where = f"[{section}] {key} = {value!r}"
+    unit = unit_of(section, key) if isinstance(value, int | float) else ""
+    where = f"[{section}] {key} = {value!r}" + (f" {unit}" if unit else "")
     if isinstance(default, bool):
         return _boolean(where, value)
     if isinstance(default, int | float):

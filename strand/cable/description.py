@@ -96,6 +96,11 @@ _CORE_KEYS = {"diameter", "E", "nu", "friction", "yield_stress"}
 _LAYER_KEYS = {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
 
 
+#: the unit of each number of a core's or a layer's table, as error messages give it
+UNITS = {"diameter": "m", "E": "Pa", "nu": "", "yield_stress": "Pa", "lay_angle": "°",
+         "friction": ""}  # fmt: skip
+
+
 def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, closed_low=False):
     if key not in d:
         raise CableError(f"{where}: missing field '{key}'")
@@ -104,8 +109,13 @@ def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, c
         raise CableError(f"{where}.{key}: expected a number, got {v!r}")
     ok = (v >= low if closed_low else v > low) and v < high
     if not ok:
-        bounds = f"{'[' if closed_low else '('}{low:g}, {high:g})"
-        raise CableError(f"{where}.{key} = {v!r} is out of range {bounds}")
+        unit = UNITS[key]
+        if unit == "°":
+            value, bounds = f"{v:g}°", f"{'[' if closed_low else '('}{low:g}°, {high:g}°)"
+        else:
+            unit = f" {unit}" if unit else ""
+            value, bounds = f"{v:g}{unit}", f"{'[' if closed_low else '('}{low:g}, {high:g}){unit}"
+        raise CableError(f"{where}.{key} = {value} is out of range {bounds}")
     return float(v)
 
 

@@ -34,6 +34,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -73,6 +74,9 @@ class SaddleLoad:
     deflection: float = 0.0  # m, displacement control: midspan deflection amplitude; 0: none
     yb: float = 0.0  # m, displacement control: Y_b, peak-to-peak at [fatigue] clamp_distance
 
+    UNITS: ClassVar[dict[str, str]] = {"lateral": "N", "saddle_length": "m", "deflection": "m",
+                                       "yb": "m"}  # fmt: skip
+
 
 @dataclass(frozen=True)
 class SaddleSteps:
@@ -86,6 +90,9 @@ class SaddleSteps:
     deflection_max: float = 2e-3  # m, largest deflection increment
     yb: float = 5e-5  # m, displacement control: first yb increment of a leg
     yb_max: float = 2e-4  # m, largest yb increment
+
+    UNITS: ClassVar[dict[str, str]] = {"lateral": "N", "lateral_max": "N", "deflection": "m",
+                                       "deflection_max": "m", "yb": "m", "yb_max": "m"}  # fmt: skip
 
 
 class Saddle(SetupKind):
@@ -105,9 +112,10 @@ class Saddle(SetupKind):
         super().check_settings(load, steps)
         for name in DISPLACEMENTS:
             if getattr(steps, name) > getattr(steps, f"{name}_max"):
-                raise CaseError(f"[steps] {name} = {getattr(steps, name)} exceeds {name}_max")
+                raise CaseError(f"[steps] {name} = {getattr(steps, name)} m exceeds {name}_max "
+                                f"= {getattr(steps, f'{name}_max')} m")  # fmt: skip
             if getattr(load, name) < 0:
-                raise CaseError(f"[load] {name} = {getattr(load, name)}: expected a positive "
+                raise CaseError(f"[load] {name} = {getattr(load, name)} m: expected a positive "
                                 "amplitude (the cycle gives the signs), or 0 for none")  # fmt: skip
         if load.control not in ("force", "displacement"):
             raise CaseError(

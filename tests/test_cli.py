@@ -41,6 +41,12 @@ def seven(tmp_path) -> Path:
         (["{case}", "--set", "load.tension=-5e3"], "compressed strand is outside the model"),
         (["{case}", "--set", "meshh_max"], "expected section.key=value"),
         (["{case}", "--set", "mesh.hmax=1"], r"unknown setting\(s\) in \[mesh\]: \['hmax'\]"),
+        # elements from a tenth of the 3.34 mm wires to an eighth of the 198 mm lay length
+        (
+            ["{case}", "--set", "mesh.h_max=1e-6"],
+            r"\[mesh\] h_max = 1e-06 m is out of range \[0\.000334, 0\.0247\] m for this cable",
+        ),
+        (["{case}", "--set", "mesh.h_max=0.03"], r"h_max = 0\.03 m is out of range \[0\.000334, "),
         (
             ["{case}", "--set", "mesh.length=-0.1"],
             r"\[mesh\] length = -0\.1 m: expected a positive",

@@ -133,6 +133,17 @@ def test_bad_cable_input_is_named(change, message):
         cable_from_dict(small_cable(**change))
 
 
+def test_elements_closer_than_the_merge_tolerance_are_refused():
+    """Nodes closer than ``merge_tol`` along the axis merge, which would leave a contact point
+    without its node: such an ``h_max`` is refused in one line, the bound given; the shortest
+    accepted still builds."""
+    cable = cable_from_dict(small_cable())
+    bound = 1e-6 / np.cos(np.radians(8.0))
+    with pytest.raises(CableError, match=r"h_max = 1e-06 m: .* \(h_max > 1\.01e-06 m here\)"):
+        build_geometry(cable, 2e-3, 1e-6)
+    assert len(build_geometry(cable, 2e-3, 1.01 * bound).cells) > 1000
+
+
 def test_missing_fields_are_named():
     data = small_cable()
     del data["layer"][0]["E"]

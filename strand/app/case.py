@@ -7,7 +7,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
 
     [mesh]
     length = 1.0              # m, free length between the end sections
-    h_max = 4e-3              # m, largest element (arc length)
+    h_max = 4e-3              # m, largest element (arc length), from the thinnest wire's
+                              #   diameter / 10 to the shortest lay length / 8
 
     [contact]
     normal = "auto"           # auto (director with friction, frozen without) | neighbour | director | frozen

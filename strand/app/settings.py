@@ -35,7 +35,7 @@ __all__ = [
 @dataclass(frozen=True)
 class MeshSettings:
     length: float = 1.0  # m
-    h_max: float = 4e-3  # m
+    h_max: float = 4e-3  # m, largest element: thinnest wire diameter / 10 to shortest lay / 8
 
     #: the SI unit of every number ("" for a ratio or a count): error messages give it
     UNITS: ClassVar[dict[str, str]] = {"length": "m", "h_max": "m"}

@@ -83,6 +83,30 @@ def test_bad_input_gets_one_line_and_nothing_is_computed(tmp_path, seven, capsys
     assert sorted(tmp_path.rglob("*")) == before  # nothing computed, nothing written
 
 
+def test_a_case_that_fails_while_built_leaves_the_folder_as_it_was(tmp_path, seven, capsys,
+                                                                   monkeypatch):  # fmt: skip
+    """A run writes into its folder only once its strand is built: a case refused while it is
+    built (here the finite-element problem's own refusal) creates no folder and keeps an earlier
+    run's files even under --overwrite, so the corrected run goes into the same folder."""
+    import strand.app.build
+
+    def refused(*args, **kwargs):
+        raise CaseError("refused while built")
+
+    monkeypatch.setattr(strand.app.build, "StrandProblem", refused)
+    new, old = tmp_path / "new", earlier_run(tmp_path / "old")
+    before = contents(old)
+    assert main(["run", str(seven), "--out", str(new)]) == 2
+    assert one_line_error(capsys) == "strand: error: refused while built"
+    assert not new.exists()
+    assert main(["run", str(seven), "--out", str(old), "--overwrite"]) == 2
+    assert contents(old) == before
+    monkeypatch.undo()
+    capsys.readouterr()
+    assert main(["run", str(seven), "--out", str(new), "--set", "load.cycle=[1.0]"]) == 0
+    assert (new / "case.toml").is_file() and (new / "steps.csv").is_file()
+
+
 @pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
 def test_a_read_only_results_folder_is_named(tmp_path, seven, capsys):
     out = tmp_path / "ro"

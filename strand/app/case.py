@@ -95,7 +95,7 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     surface_points = 16       # points around each wire's circumference (ranges within 2 %)
     clamp_distance = 0.089    # m, Poffenberger–Swart's distance from the clamp (3.5 in)
     end_zone = 0.0            # m, clamp zone at each end, reported apart from the free span;
-                              #   0: one lay length of the outer layer
+                              #   0: half the longest lay length (how far the ends' lock reaches)
     stuck_slip = 1e-9         # m, pairs that slide less than this stayed stuck throughout
     breaking_strength = 0.0   # N, minimum breaking strength for API RP 2SK's T–N; 0: not given
     spectrum = []             # [[amplitude, cycles], ...]: the cycles in a period (a year, the

@@ -10,7 +10,6 @@ these. Units: SI, in the comments.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from functools import partial
@@ -142,7 +141,7 @@ class FatigueSettings:
     steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, or "none"
     surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
     clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
-    end_zone: float = 0.0  # m, clamp zone at each end; 0: one lay length of the outer layer
+    end_zone: float = 0.0  # m, clamp zone at each end; 0: half the longest lay length
     stuck_slip: float = 1e-9  # m, a pair whose Coulomb slide stays below this stuck throughout
     breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
     spectrum: tuple[tuple[float, float], ...] = ()  # [[amplitude, cycles], ...]: run as the sweep
@@ -180,12 +179,11 @@ class FatigueSettings:
         ]  # fmt: skip
 
     def end_zone_length(self, cable: Cable) -> float:
-        """The clamp zone's length at each end (m): ``end_zone``, or one lay length of the outer
-        layer (the core's length 0 for a bare core)."""
-        if self.end_zone > 0:
-            return self.end_zone
-        pitch = cable.layers[-1].pitch
-        return pitch if math.isfinite(pitch) else 0.0
+        """The clamp zone's length at each end (m): ``end_zone``, or how far the end sections'
+        lock on the wires reaches, half the longest lay length (``strand.fatigue.zones``)."""
+        from ..fatigue.zones import lock_reach
+
+        return self.end_zone if self.end_zone > 0 else lock_reach(cable)
 
 
 @dataclass(frozen=True)

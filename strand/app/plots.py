@@ -12,7 +12,7 @@ import numpy as np
 
 from ..cable.pictures import offscreen_plotter, save
 
-__all__ = ["results_figures", "fatigue_figures", "save_figure"]
+__all__ = ["results_figures", "fatigue_figures", "stress_range_figure", "save_figure"]
 
 
 def results_figures(case, result, problem, kind_figures: Callable[[str], list[Path]]) -> list[Path]:
@@ -210,27 +210,75 @@ def fatigue_figures(folder, report) -> list[Path]:
                  "dashed: clamp zones)", fontsize=10)  # fmt: skip
     paths = [save_figure(fig, folder / "fretting_map.png", None, False)]
 
-    s, e = read_history(folder / "wire_sections.h5").static, report.elements
+    s = read_history(folder / "wire_sections.h5").static
+    paths.append(stress_range_figure(folder / "stress_range.png", s, report))
+    return paths
+
+
+def stress_range_figure(path: Path, sections: dict, report) -> Path:
+    """``stress_range.png``: the outer wires' largest surface stress range along z (one line per
+    wire, the clamp zones dashed; Poffenberger–Swart's 2σ_a at the clamp where it holds) beside
+    their layer's S–N curve, Δσ = 2σ_a against the cycles to failure N, with each outer wire's
+    largest range in the free span and in the clamp zone placed on it at its life."""
+    import matplotlib.pyplot as plt
+
+    s, e = sections, report.elements
     outer = s["layer"] == s["layer"].max()
-    fig, ax = plt.subplots(figsize=(9, 4))
+    layer = int(s["layer"].max())
+    fig, (ax, sn) = plt.subplots(1, 2, figsize=(12, 4.5), width_ratios=(1.6, 1))
     for w in np.unique(s["wire"][outer]):
         m = s["wire"] == w
         ax.plot(1e3 * s["z"][m], 1e-6 * e["range"][m], lw=0.6, alpha=0.7)
+    for z in (report.end_zone, report.length - report.end_zone):
+        if 0 < z < report.length:
+            ax.axvline(1e3 * z, color="k", ls="--", lw=0.6)
     ps = report.poffenberger_swart
     if ps is not None and ps["holds"]:
-        ax.plot(
-            [0],
-            [2e-6 * ps["sigma_a"]],
-            "k*",
-            ms=10,
-            label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)",
-        )
-        ax.legend()
-    ax.set(
-        xlabel="z (mm)",
-        ylabel="largest surface stress range (MPa)",
-        title="outer wires: surface stress range over the history (one line per wire)",
-    )
+        ax.plot([0], [2e-6 * ps["sigma_a"]], "k*", ms=10,
+                label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)")  # fmt: skip
+        ax.legend(fontsize=8)
+    ax.set(xlabel="z (mm)", ylabel="largest surface stress range Δσ (MPa)",
+           title="along the strand (one line per wire; dashed: clamp zones)")  # fmt: skip
     ax.grid(alpha=0.3)
-    paths.append(save_figure(fig, folder / "stress_range.png", None, True))
-    return paths
+    curve = report.curves[layer] if len(report.curves) > layer else None
+    if curve is None:
+        sn.text(0.5, 0.5, f"layer {layer}: not assessed\n(no S–N curve for its wires)",
+                ha="center", va="center", transform=sn.transAxes)  # fmt: skip
+        sn.set_axis_off()
+    else:
+        w = report.wires
+        n = np.logspace(3, 10, 200)
+        sn.loglog(n, _sn_range(curve, n), "k-", lw=1.5, label=_wrap(curve.name, 45), zorder=2)
+        lowest = _sn_range(curve, n[-1])
+        for suffix, marker, zone in (("_free", "o", "free span"), ("_clamp", "x", "clamp zone")):
+            r = w["range" + suffix][(w["layer"] == layer) & (w["range" + suffix] > 0)]
+            if len(r):
+                sn.plot(curve.life(r / 2), 1e-6 * r, marker, ms=6, color="tab:red", zorder=3,
+                        mfc="none", label=f"outer wires' largest range, {zone}")  # fmt: skip
+                lowest = min(lowest, 1e-6 * r.min())
+        sn.set(
+            xlabel="cycles to failure N",
+            ylabel="stress range Δσ = 2σ_a (MPa)",
+            title=f"layer {layer}'s S–N curve",
+            xlim=(n[0], n[-1]),
+            ylim=(lowest / 1.5, None),
+        )
+        sn.grid(alpha=0.3, which="both")
+        sn.legend(fontsize=7, loc="upper right")
+    fig.suptitle("outer wires: surface stress range over the history against the S–N curve")
+    return save_figure(fig, path, None, True)
+
+
+def _sn_range(curve, n) -> np.ndarray:
+    """The stress range Δσ = 2σ_a (MPa) at which ``curve`` gives ``n`` cycles to failure."""
+    n = np.asarray(n, float)
+    high = curve.A * n**curve.b
+    if not curve.A2:
+        return 2 * high
+    return 2 * np.where(n <= curve.knee, high, curve.A2 * n**curve.b2)
+
+
+def _wrap(text: str, width: int) -> str:
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, width))

@@ -314,9 +314,14 @@ def load_deflection_figure(case: Case, result, note: str = "") -> Path:
     fig, ax = plt.subplots(figsize=(6, 4.5))
     P = [0.0] + [s.state.lateral / 1e3 for s in lateral]
     d = [0.0] + [1e3 * s.state.deflection for s in lateral]
-    ax.plot(d, P, "o-", ms=3, label="model")
-    for rule, style in (("cumulative", "--"), ("own_tension", ":")):
-        ax.plot(1e3 * np.r_[0.0, result.reference[rule]], P, style, color="k",
+    ax.plot(d, P, "o-", ms=3, color="tab:blue", label="model", zorder=2)
+    # the two friction rules often nearly coincide: a wide pale band under a thin dashed line
+    # keeps both in sight where they do
+    for rule, style in (("cumulative", {"color": "tab:orange", "lw": 5, "alpha": 0.45,
+                                        "zorder": 1, "solid_capstyle": "round"}),
+                        ("own_tension", {"color": "k", "lw": 1.2, "ls": (0, (4, 2)),
+                                         "zorder": 3})):  # fmt: skip
+        ax.plot(1e3 * np.r_[0.0, result.reference[rule]], P, **style,
                 label=f"beam, stick–slip law ({rule.replace('_', ' ')}, Masing)")  # fmt: skip
     ax.legend(fontsize=8)
     ax.set_xlabel("midspan deflection (mm)")

@@ -1,6 +1,6 @@
 """Figures readable alone: the deformed picture's magnification, and on the quick case as a user
-first runs it (``quick_run``), titles inside their figures, the S–N curve that
-stress_range.png promises, and both analytical laws of load_deflection.png in sight."""
+first runs it (``quick_run``), titles inside their figures, a scale on the deformed view, the S–N
+curve that stress_range.png promises, and both analytical laws of load_deflection.png in sight."""
 
 import csv
 
@@ -47,6 +47,25 @@ def test_every_title_lies_inside_its_figure(quick_run):
             box = t.get_window_extent(renderer)
             assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1, (name, t)
             assert fig.bbox.y0 <= box.y0 and box.y1 <= fig.bbox.y1, (name, t)
+
+
+def test_the_deformed_view_has_a_title_that_fits_and_a_scale(quick_run):
+    """deformed_axial_force.png: its title, with the magnification, lies within the picture;
+    a ruler along the strand gives z (mm, true scale) and one beside it the deflection (mm) as
+    magnified, a round length."""
+    p = quick_run["pictures"]["deformed_axial_force.png"]
+    (x0, x1, y0, y1), (width, height) = p["title"], p["window"]
+    assert 0 < x0 < x1 < width and 0 < y0 < y1 <= height, p
+    factor = float(p["text"].split("magnified ")[1].split("×")[0])
+    assert factor > 1 and "P = 0.30 kN" in p["text"]
+    rulers = dict(p["rulers"])
+    D = quick_run["case"].cable.outer_diameter  # 10.02 mm: the view shows ±6 D of midspan
+    shown = rulers["z (mm, true scale)"]
+    assert shown == pytest.approx((1e3 * (0.15 - 6 * D), 1e3 * (0.15 + 6 * D)))
+    across = rulers["deflection (mm)"][::-1]  # from the axis down
+    mantissa = across[1] / 10 ** np.floor(np.log10(across[1]))
+    assert across[0] == 0 and any(np.isclose(mantissa, m) for m in (1, 2, 5))
+    assert D / 10 < 1e-3 * across[1] * factor <= D / 2  # drawn as up to half the strand
 
 
 def test_stress_range_draws_the_sn_curve_with_the_wires_on_it(quick_run):

@@ -128,7 +128,7 @@ def breaking_strength(wires: int) -> float:
 def case_for(wires: int, length: float, settings: list[str]):
     """The case of the strand of ``wires`` over ``length`` (m), its loads scaled by its MBS;
     ``settings`` (``section.key=value``) over them."""
-    from strand.app.case import case_from_dict, parse_settings
+    from strand.app.case import case_from_dict, merge_settings, parse_settings
 
     mbs = breaking_strength(wires)
     tension = TENSION_SHARE * mbs
@@ -141,12 +141,8 @@ def case_for(wires: int, length: float, settings: list[str]):
                   "lateral_max": lateral * 400 / 4300, "tolerance": 2.5e-7 * tension},
         "fatigue": {"breaking_strength": mbs},
     }  # fmt: skip
-    for section, values in parse_settings(settings).items():
-        if isinstance(values, dict):
-            data.setdefault(section, {}).update(values)
-        else:
-            data[section] = values
-    return case_from_dict(data, source=f"{wires}-wire strand")
+    return case_from_dict(merge_settings(data, parse_settings(settings)),
+                          source=f"{wires}-wire strand")  # fmt: skip
 
 
 def factor_info(factor) -> dict:

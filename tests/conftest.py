@@ -1,1 +1,48 @@
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
 import strand  # noqa: F401  (the dolfinx wheel's libraries load before petsc4py/dolfinx)
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def quick_run(tmp_path_factory):
+    """``cases/quick_1x6.toml`` as a user first runs it (fields off: ~15 s), once per session: its
+    folder, and what its figures showed as they were saved (``figures``: name → the matplotlib
+    figure; ``pictures``: name → the pyvista plotter's title extent, window size and rulers),
+    for the tests of the figures and of the fatigue report."""
+    import strand.app.plots as plots
+    from strand.app.case import load_case
+    from strand.app.run import run_case
+
+    figures, pictures = {}, {}
+    save_figure, save = plots.save_figure, plots.save
+
+    def keep_figure(fig, path, *args, **kwargs):
+        figures[Path(path).name] = fig
+        return save_figure(fig, path, *args, **kwargs)
+
+    def keep_picture(plotter, path):
+        title = plotter.actors["title"]
+        box = plots.text_extent(plotter, title)
+        props = plotter.renderer.GetViewProps()
+        props = [props.GetItemAsObject(i) for i in range(props.GetNumberOfItems())]
+        rulers = [p for p in props if p.IsA("vtkAxisActor2D")]
+        pictures[Path(path).name] = {
+            "title": tuple(box), "text": title.GetInput(), "window": tuple(plotter.window_size),
+            "rulers": [(r.GetTitle(), r.GetRange()) for r in rulers],
+        }  # fmt: skip
+        return save(plotter, path)
+
+    folder = tmp_path_factory.mktemp("quick") / "out"
+    case = load_case(ROOT / "cases" / "quick_1x6.toml", ["output.fields=false"])
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(plots, "save_figure", keep_figure)
+        m.setattr(plots, "save", keep_picture)
+        result = run_case(case, folder)
+    assert not result.failure
+    return {"folder": folder, "figures": figures, "pictures": pictures, "case": case}

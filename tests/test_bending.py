@@ -288,5 +288,5 @@ def test_bending_case_settings_are_checked():
         case_from_dict({"load": {"kind": "twist"}})
     with pytest.raises(CaseError, match=r"zone = 0.8 m must be shorter"):
         case_from_dict({"load": {"kind": "bending", "zone": 0.8}, "mesh": {"length": 0.5}})
-    with pytest.raises(CaseError, match="curvature = 0.1 exceeds curvature_max"):
+    with pytest.raises(CaseError, match="curvature = 0.1 1/m exceeds curvature_max = 0.05 1/m"):
         case_from_dict({"steps": {"curvature": 0.1}})

@@ -4,6 +4,7 @@ refuses before computing: unknown cables, Cardinal's loads on a cable of one's o
 from __future__ import annotations
 
 import csv
+import re
 import tomllib
 from dataclasses import replace
 from pathlib import Path
@@ -154,3 +155,26 @@ def test_the_built_in_name_needs_its_own_loads():
     assert case.cable == judge120()
     assert case.unset_loads == ("tension", "lateral")
     assert case_from_dict({"cable": "cardinal"}).unset_loads == ()
+
+
+def test_every_number_setting_names_its_unit():
+    """Every number of every section and set-up kind has its unit in its class's ``UNITS``
+    ("" for a ratio or a count), so that a refused value's line gives it: a new setting without
+    one fails here."""
+    from dataclasses import fields
+
+    from strand.app import kinds
+    from strand.app.settings import KIND_SECTIONS, SECTIONS
+
+    classes = [*SECTIONS.values()]
+    for kind in kinds.registered():
+        classes += [getattr(kind, attr) for attr in KIND_SECTIONS.values()]
+    for cls in classes:
+        defaults = cls()
+        for f in fields(defaults):
+            value = getattr(defaults, f.name)
+            if isinstance(value, int | float) and not isinstance(value, bool):
+                assert f.name in cls.UNITS, f"{cls.__name__}.{f.name}: no unit in UNITS"
+    line = "[fatigue] clamp_distance = -0.089 m: expected a positive number"
+    with pytest.raises(Exception, match=re.escape(line)):
+        case_from_dict({"fatigue": {"clamp_distance": -0.089}}, source="c")

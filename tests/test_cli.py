@@ -41,6 +41,34 @@ def seven(tmp_path) -> Path:
         (["{case}", "--set", "load.tension=-5e3"], "compressed strand is outside the model"),
         (["{case}", "--set", "meshh_max"], "expected section.key=value"),
         (["{case}", "--set", "mesh.hmax=1"], r"unknown setting\(s\) in \[mesh\]: \['hmax'\]"),
+        # elements from a tenth of the 3.34 mm wires to an eighth of the 198 mm lay length
+        (
+            ["{case}", "--set", "mesh.h_max=1e-6"],
+            r"\[mesh\] h_max = 1e-06 m is out of range \[0\.000334, 0\.0247\] m for this cable",
+        ),
+        (["{case}", "--set", "mesh.h_max=0.03"], r"h_max = 0\.03 m is out of range \[0\.000334, "),
+        (
+            ["{case}", "--set", "mesh.length=-0.1"],
+            r"\[mesh\] length = -0\.1 m: expected a positive",
+        ),
+        (
+            ["{case}", "--set", "cable.core.nuu=0.3"],
+            "the cable's core has no key 'nuu'; valid: E, diameter, friction, nu, yield_stress$",
+        ),
+        (
+            ["{case}", "--set", "cable.layer.1.colour=1"],
+            "a cable layer has no key 'colour'; valid: ",
+        ),
+        (["{case}", "--set", "cable.cor.nu=0.3"], "one of cable.name, cable.core.<key>, cable"),
+        (["{case}", "--set", "cable.layer.2.E=60e9"], "has layers 1 to 1"),
+        (
+            ["{case}", "--set", "cable.core.nu=0.6"],
+            r"cable: core\.nu = 0\.6 is out of range \(-1, ",
+        ),
+        (
+            ["{case}", "--set", "cable.layer[1].diameter=2.5"],
+            r"layer\[1\]\.diameter = 2\.5 m is out of range \(0, 1\) m$",
+        ),
         (["{case}", "--out", "{case}"], "is a file, not a folder"),
         (["{case}", "--out", "{case}/sub"], "cannot create the results folder"),
     ],
@@ -82,6 +110,30 @@ def test_run_help_lists_every_setting_of_every_section():
     assert "minutes" not in text  # the main job's time is the README's to state
 
 
+def test_a_case_that_fails_while_built_leaves_the_folder_as_it_was(tmp_path, seven, capsys,
+                                                                   monkeypatch):  # fmt: skip
+    """A run writes into its folder only once its strand is built: a case refused while it is
+    built (here the finite-element problem's own refusal) creates no folder and keeps an earlier
+    run's files even under --overwrite, so the corrected run goes into the same folder."""
+    import strand.app.build
+
+    def refused(*args, **kwargs):
+        raise CaseError("refused while built")
+
+    monkeypatch.setattr(strand.app.build, "StrandProblem", refused)
+    new, old = tmp_path / "new", earlier_run(tmp_path / "old")
+    before = contents(old)
+    assert main(["run", str(seven), "--out", str(new)]) == 2
+    assert one_line_error(capsys) == "strand: error: refused while built"
+    assert not new.exists()
+    assert main(["run", str(seven), "--out", str(old), "--overwrite"]) == 2
+    assert contents(old) == before
+    monkeypatch.undo()
+    capsys.readouterr()
+    assert main(["run", str(seven), "--out", str(new), "--set", "load.cycle=[1.0]"]) == 0
+    assert (new / "case.toml").is_file() and (new / "steps.csv").is_file()
+
+
 @pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
 def test_a_read_only_results_folder_is_named(tmp_path, seven, capsys):
     out = tmp_path / "ro"
@@ -101,6 +153,25 @@ def test_set_overrides_the_case_file(seven):
     assert load_case(None, ["load.lateral=1e3"]).load.lateral == 1e3
     with pytest.raises(CaseError, match="expected a number"):
         load_case(seven, ["mesh.length=short"])  # not TOML: read as a string, then refused
+
+
+def test_set_reaches_into_the_cable(seven):
+    """``--set cable.core.<key>``, ``cable.layer.<n>.<key>`` (or ``cable.layer[n].<key>``) and
+    ``cable.name`` edit the case's cable, a table, a file or a built-in one, and nothing else."""
+    plain = load_case(seven)
+    case = load_case(seven, ["cable.core.nu=0.28", "cable.layer.1.E=200e9",
+                             "cable.layer[1].friction=0.4", 'cable.name="stiffer"'])  # fmt: skip
+    core, layer = case.cable.layers
+    assert (core.wire.nu, layer.wire.E, layer.friction, case.cable.name) == (
+        0.28, 200e9, 0.4, "stiffer")  # fmt: skip
+    assert (core.wire.E, layer.wire.nu, layer.lay_angle) == (
+        plain.cable.layers[0].wire.E, 0.3, plain.cable.layers[1].lay_angle)  # fmt: skip
+    assert case.mesh == plain.mesh and case.load == plain.load
+    cardinal = load_case(None, ["cable.layer.4.E=60e9"])  # the built-in default's cable
+    assert [lay.wire.E for lay in cardinal.cable.layers] == [210e9, 180e9, 65e9, 65e9, 60e9]
+    assert cardinal.unset_loads == ()  # still Cardinal: its default loads are its own
+    with pytest.raises(CaseError, match="give the whole cable .* or edit the case's, not both"):
+        load_case(seven, ['cable="cardinal"', "cable.core.nu=0.28"])
 
 
 def test_version(capsys):

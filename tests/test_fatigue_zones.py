@@ -7,11 +7,14 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from strand.app.case import load_case
 from strand.app.cli import main
 from strand.app.fatigue.report import fatigue_report
 from strand.app.fatigue.tension_check import strand_tension
@@ -22,6 +25,7 @@ from strand.fatigue import (
     SN_CURVES,
     api_spiral_strand_life,
     dnv_spiral_rope_life,
+    free_span,
     in_clamp_zone,
     miner_damage,
     span_check,
@@ -29,6 +33,8 @@ from strand.fatigue import (
     stuck_throughout,
 )
 from strand_cases import SEVEN_WIRE, seven_wire
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 # -- S–N curves of steel wire (EN 1992-1-1:2004, Table 6.4N) -----------------------------------
@@ -168,4 +174,53 @@ def test_hot_spots_and_damage_are_split_by_zone(seven_wire_run):
     assert "no tension cycle" in r.text
     assert "Poffenberger–Swart skipped" in r.text and r.poffenberger_swart["holds"] is False
     default = replace(FatigueSettings(), end_zone=0.0).end_zone_length(cable)
-    assert default == pytest.approx(cable.layers[-1].pitch)
+    assert default == pytest.approx(cable.layers[-1].pitch / 2)  # how far the ends' lock reaches
+
+
+def _intervals(text: str) -> list[tuple[float, float]]:
+    return [(float(a), float(b)) for a, b in re.findall(r"z in \[([-\d.e]+), ([-\d.e]+)\]", text)]
+
+
+def test_a_span_without_a_free_span_says_so_in_one_line(seven_wire_run):
+    """0.1 m of the 1+6 at the default end zone, half its 0.198 m lay length: no free span, one
+    line saying what span or end zone would leave one (no interval, let alone an inverted one),
+    and every element in the clamp zone."""
+    cable = seven_wire().cable
+    r = fatigue_report(seven_wire_run, cable, 10e3, FatigueSettings(), write=False)
+    lines = [line for line in r.text.splitlines() if line.startswith("free span")]
+    half = cable.layers[1].pitch / 2
+    assert lines == [
+        f"free span: none: the span 0.1 m is not longer than two end zones (2 × {half:.4g} m, "
+        f"[fatigue] end_zone); a span longer than {2 * half:.4g} m, or an end_zone shorter than "
+        "0.05 m, leaves one"
+    ]
+    assert f"{2 * half:.4g}" == "0.1977" and _intervals(r.text) == []
+    assert r.elements["clamp"].all() and f"clamp zone (within {half:.4g} m of an end):" in r.text
+
+
+def test_the_quick_case_reports_its_free_span(quick_run):
+    """cases/quick_1x6.toml as shipped: a free span 0.099–0.201 m of its 0.3 m, with its own hot
+    spots and first wires to fail; the clamp zones reported beside it."""
+    text = (quick_run["folder"] / "fatigue.txt").read_text()
+    case = quick_run["case"]
+    half = case.cable.layers[1].pitch / 2
+    assert _intervals(text) == [(round(half, 5), round(0.3 - half, 4))]
+    free = text.split(f"free span (z in [{half:.4g}, {0.3 - half:.4g}] m):\n")[1]
+    free = free.split("clamp zone (")[0]
+    hot = [row for row in free.split("hot spots")[1].split("first wires")[0].splitlines()[2:]
+           if row.strip()]  # fmt: skip
+    assert len(hot) == 5 and all(half <= float(row.split()[3]) <= 0.3 - half for row in hot)
+    assert "none" not in free and f"clamp zone (within {half:.4g} m of an end):" in text
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in (ROOT / "cases").glob("*.toml")))
+def test_every_example_case_has_a_free_span_or_says_why_not(name):
+    """Each case in cases/ leaves a free span of more than one element at its end zone, or its
+    comments say that it has none."""
+    path = ROOT / "cases" / name
+    case = load_case(path)
+    span = free_span(case.mesh.length, case.fatigue.end_zone_length(case.cable))
+    if span is None:
+        assert "No free span" in path.read_text(), name
+    else:
+        assert span[1] - span[0] > case.mesh.h_max, (name, span)

@@ -6,7 +6,12 @@ from __future__ import annotations
 
 import pytest
 
-from strand.app.folder import RUN_MARKER, FolderError, prepare_results_folder
+from strand.app.folder import (
+    RUN_MARKER,
+    FolderError,
+    check_results_folder,
+    prepare_results_folder,
+)
 from strand_cases import contents, earlier_run
 
 
@@ -54,3 +59,27 @@ def test_a_file_is_not_a_results_folder(tmp_path):
         prepare_results_folder(path)
     with pytest.raises(FolderError, match="cannot create the results folder"):
         prepare_results_folder(path / "sub")
+
+
+def test_the_check_gives_the_verdict_and_writes_nothing(tmp_path):
+    """``check_results_folder`` (what a run asks before it builds its strand) refuses what
+    ``prepare_results_folder`` refuses, with the same line, and creates, removes and writes
+    nothing, whether it refuses or not."""
+    run = earlier_run(tmp_path / "run")
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("not a run")
+    (tmp_path / "file").write_text("")
+    refused = [(run, False), (tmp_path / "mine", True), (tmp_path / "file", False),
+               (tmp_path / "file" / "sub", False)]  # fmt: skip
+    for folder, overwrite in refused:
+        before = contents(tmp_path)
+        with pytest.raises(FolderError) as checked:
+            check_results_folder(folder, overwrite)
+        assert contents(tmp_path) == before
+        with pytest.raises(FolderError) as prepared:
+            prepare_results_folder(folder, overwrite)
+        assert str(checked.value).split(" (")[0] == str(prepared.value).split(" (")[0]
+    before = contents(tmp_path)
+    for folder in (run, tmp_path / "new" / "sub"):
+        assert check_results_folder(folder, overwrite=True) == folder
+    assert contents(tmp_path) == before and not (tmp_path / "new").exists()

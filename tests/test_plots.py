@@ -1,9 +1,16 @@
-"""Figures readable alone: the deformed picture's magnification."""
+"""Figures readable alone: the deformed picture's magnification, and on the quick case as a user
+first runs it (``quick_run``), titles inside their figures, a scale on the deformed view, the S–N
+curve that stress_range.png promises, and both analytical laws of load_deflection.png in sight."""
+
+import csv
 
 import numpy as np
 import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.colors import to_rgba
 
 from strand.app.plots import magnification
+from strand.fatigue import SN_CURVES
 
 
 @pytest.mark.parametrize("largest", [1e-7, 3.3e-6, 4e-5, 1.2e-4, 9e-4, 2.4e-3])
@@ -20,3 +27,77 @@ def test_magnification_shows_the_largest_displacement_as_a_fifth_to_a_half_of_th
     else:
         assert largest > size / 5
     assert magnification(0.0, size) == 1.0
+
+
+def test_every_title_lies_inside_its_figure(quick_run):
+    """Every title, suptitle, axis label and legend of the run's matplotlib figures is drawn
+    inside the figure: none is clipped at an edge."""
+    figures = quick_run["figures"]
+    assert {"load_deflection.png", "stress_range.png", "fretting_map.png"} <= set(figures)
+    for name, fig in figures.items():
+        canvas = FigureCanvasAgg(fig)  # saved and closed: drawn again as it was saved
+        canvas.draw()
+        renderer = canvas.get_renderer()
+        texts = [fig._suptitle] + [t for ax in fig.axes for t in (ax.title, ax.xaxis.label,
+                                                                    ax.yaxis.label)]  # fmt: skip
+        texts += [ax.get_legend() for ax in fig.axes]
+        for t in texts:
+            if t is None or (hasattr(t, "get_text") and not t.get_text()):
+                continue
+            box = t.get_window_extent(renderer)
+            assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1, (name, t)
+            assert fig.bbox.y0 <= box.y0 and box.y1 <= fig.bbox.y1, (name, t)
+
+
+def test_the_deformed_view_has_a_title_that_fits_and_a_scale(quick_run):
+    """deformed_axial_force.png: its title, with the magnification, lies within the picture;
+    a ruler along the strand gives z (mm, true scale) and one beside it the deflection (mm) as
+    magnified, a round length."""
+    p = quick_run["pictures"]["deformed_axial_force.png"]
+    (x0, x1, y0, y1), (width, height) = p["title"], p["window"]
+    assert 0 < x0 < x1 < width and 0 < y0 < y1 <= height, p
+    factor = float(p["text"].split("magnified ")[1].split("×")[0])
+    assert factor > 1 and "P = 0.30 kN" in p["text"]
+    rulers = dict(p["rulers"])
+    D = quick_run["case"].cable.outer_diameter  # 10.02 mm: the view shows ±6 D of midspan
+    shown = rulers["z (mm, true scale)"]
+    assert shown == pytest.approx((1e3 * (0.15 - 6 * D), 1e3 * (0.15 + 6 * D)))
+    across = rulers["deflection (mm)"][::-1]  # from the axis down
+    mantissa = across[1] / 10 ** np.floor(np.log10(across[1]))
+    assert across[0] == 0 and any(np.isclose(mantissa, m) for m in (1, 2, 5))
+    assert D / 10 < 1e-3 * across[1] * factor <= D / 2  # drawn as up to half the strand
+
+
+def test_stress_range_draws_the_sn_curve_with_the_wires_on_it(quick_run):
+    """stress_range.png: beside the ranges along z, the outer layer's S–N curve (EN 1992-1-1's
+    prestressing steel, Δσ = 2σ_a against N) and each outer wire's largest range in the free
+    span and the clamp zone (wires.csv) placed on it at its life."""
+    fig = quick_run["figures"]["stress_range.png"]
+    sn = next(ax for ax in fig.axes if ax.get_xscale() == "log" and ax.get_yscale() == "log")
+    curve = SN_CURVES["en1992-prestressing-steel"]
+    line = next(ln for ln in sn.lines if ln.get_label().startswith("prestressing steel"))
+    n, delta = line.get_data()
+    assert n.min() <= 1e4 and n.max() >= 1e9
+    np.testing.assert_allclose(curve.life(1e6 * np.asarray(delta) / 2), n, rtol=1e-9)
+    with open(quick_run["folder"] / "wires.csv") as f:
+        wires = [w for w in csv.DictReader(f) if w["layer"] == "1"]
+    for zone, key in (("free span", "range_free_span_MPa"), ("clamp zone", "range_clamp_zone_MPa")):
+        points = next(ln for ln in sn.lines if ln.get_label().endswith(zone))
+        x, y = points.get_data()
+        np.testing.assert_allclose(sorted(y), sorted(float(w[key]) for w in wires), rtol=1e-5)
+        np.testing.assert_allclose(x, curve.life(1e6 * np.asarray(y) / 2), rtol=1e-9)
+
+
+def test_load_deflection_keeps_both_laws_in_sight(quick_run):
+    """load_deflection.png: the two friction rules of the stick–slip law, which nearly coincide,
+    in different colours, one a wide band under the model, the other a thin dashed line over it."""
+    ax = quick_run["figures"]["load_deflection.png"].axes[0]
+    model = next(ln for ln in ax.lines if ln.get_label() == "model")
+    band, line = (next(ln for ln in ax.lines if f"({rule}, Masing)" in ln.get_label())
+                  for rule in ("cumulative", "own tension"))  # fmt: skip
+    assert to_rgba(band.get_color())[:3] != to_rgba(line.get_color())[:3]
+    assert to_rgba(model.get_color())[:3] not in (to_rgba(band.get_color())[:3],
+                                                  to_rgba(line.get_color())[:3])  # fmt: skip
+    assert band.get_linewidth() >= 3 * line.get_linewidth()
+    assert band.get_zorder() < model.get_zorder() < line.get_zorder()
+    assert line.get_linestyle() not in ("-", "solid")

@@ -45,7 +45,7 @@ def test_a_case_file_writes_to_results_named_after_it(tmp_path):
         ("[load]\ndirection = [0, 0, 1]\n", "a direction across the strand axis"),
         ("[steps]\nmax_iterations = 2.5\n", "expected a whole number"),
         ("[steps]\nlateral = 500.0\n", "exceeds lateral_max"),
-        ("[steps]\ntolerance = -1\n", r"\[steps\] tolerance = -1: expected a positive number"),
+        ("[steps]\ntolerance = -1\n", r"\[steps\] tolerance = -1 N: expected a positive number"),
         (
             "[steps]\nbalance = -1e-4\n",
             r"balance = -0.0001: expected a positive number, or 0 for off",

@@ -276,9 +276,10 @@ def test_the_beam_compliance_is_the_tensioned_beams():
          "clamp_distance = 0.06 m"),
         ({"deflection": 1e-4}, {}, {}, '[load] deflection = 0.0001 m is a displacement amplitude'),
         ({"control": "stroke"}, {}, {}, "[load] control = 'stroke': expected \"force\""),
-        ({"control": "displacement", "yb": -1e-4}, {}, {}, "[load] yb = -0.0001: expected a "
+        ({"control": "displacement", "yb": -1e-4}, {}, {}, "[load] yb = -0.0001 m: expected a "
          "positive amplitude"),
-        ({"control": "displacement", "yb": 1e-4}, {"yb": 1e-3}, {}, "[steps] yb = 0.001 exceeds"),
+        ({"control": "displacement", "yb": 1e-4}, {"yb": 1e-3}, {},
+         "[steps] yb = 0.001 m exceeds yb_max = 0.0002 m"),
     ],
 )  # fmt: skip
 def test_bad_displacement_settings_are_refused_in_one_line(load, steps, fatigue, message):

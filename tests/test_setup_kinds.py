@@ -170,7 +170,7 @@ def test_a_sweep_reports_the_kinds_measure(pull, seven, tmp_path):
 def test_a_kinds_own_settings_are_checked_and_refused_in_other_cases(pull):
     case = case_from_dict({"load": {"kind": "pull", "pull": 500.0}})
     assert pull.load(case).pull == 500.0 and case.load.pull == 500.0
-    with pytest.raises(CaseError, match=r"\[steps\] pull = 3000.0 exceeds pull_max"):
+    with pytest.raises(CaseError, match=r"\[steps\] pull = 3000.0 N exceeds pull_max = 2000.0 N"):
         case_from_dict({"steps": {"pull": 3e3}})
     kinds.unregister("pull")
     try:

@@ -350,7 +350,7 @@ def _fake_member(damage: float, curve: str | None):
         crossings={"interface": np.array([0]), "wire_a": np.array([0]), "wire_b": np.array([1]),
                    "z": np.array([0.5]), "clamp": np.array([False]), "line": np.array([True]),
                    "damage": np.array([d])},
-        wires={"curve": np.array([curve or "not assessed"])}, end_zone=0.1,
+        wires={"curve": np.array([curve or "not assessed"])}, end_zone=0.1, length=1.0,
         tension_check={"dnv": 1e-9, "api": None, "range": 5.0, "mean": 1e4, "cycle": False},
     )  # fmt: skip
     return SimpleNamespace(fatigue=report, failure="", interrupted=False)

@@ -52,9 +52,9 @@ def settings_reference() -> str:
     names = {"diameter": "wire diameter", "E": "Young's modulus", "nu": "Poisson's ratio",
              "wires": "number of wires", "lay_angle": "lay angle", "lay": "lay hand"}  # fmt: skip
     keys = [f.name for f in fields(cable.Wire)] + [f.name for f in fields(cable.Layer)]
-    for key in [k for k in keys if k in cable._CORE_KEYS | cable._LAYER_KEYS]:
+    for key in [k for k in keys if k in cable.CORE_KEYS | cable.LAYER_KEYS]:
         where = ", ".join(
-            name for name, keys in (("core", cable._CORE_KEYS), ("layer", cable._LAYER_KEYS))
+            name for name, keys in (("core", cable.CORE_KEYS), ("layer", cable.LAYER_KEYS))
             if key in keys
         )  # fmt: skip
         text = ", ".join(t for t in (names.get(key), comments.get(key)) if t and t != "-")

@@ -1,6 +1,6 @@
-"""Building a run from a case: its results folder (with the settings written first), the strand in
-its set-up kind's test set-up with the Newton solver, its load programme, and the state a restart
-continues from. Units: SI."""
+"""Building a run from a case: its results folder (checked first, written with the whole case
+once the strand is built), the strand in its set-up kind's test set-up with the Newton solver,
+its load programme, and the state a restart continues from. Units: SI."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ from ..solver import ErrorControl, NewtonOptions
 from ..solver.convergence import STALL_AFTER
 from .case import check_loads_given
 from .case_toml import case_toml
-from .folder import RUN_MARKER, prepare_results_folder
+from .folder import RUN_MARKER, check_results_folder, prepare_results_folder
 from .kinds import kind_of
 from .recorders import RunStep
 from .run_result import Start
@@ -23,6 +23,7 @@ from .settings import Case
 
 __all__ = [
     "settings_text",
+    "check_folder",
     "results_folder",
     "newton_options",
     "setup_and_programme",
@@ -53,11 +54,19 @@ def settings_text(case: Case) -> str:
     return "\n".join(lines) + "\n"
 
 
+def check_folder(case: Case, folder, overwrite: bool) -> Path:
+    """Refuse, before anything is built or written, a case that leaves Cardinal's loads on a
+    cable of its own (``check_loads_given``) and a results folder the run may not use
+    (``folder.check_results_folder``, on rank 0; every rank gets the verdict)."""
+    check_loads_given(case)
+    return on_root(lambda: check_results_folder(folder, overwrite))
+
+
 def results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
     """The run's folder, prepared on rank 0 (``folder.prepare_results_folder``) with the whole
-    case written first (``case.toml``, ``strand.app.case_toml``); every rank gets the verdict. A
-    case that leaves Cardinal's loads on a cable of its own is refused first
-    (``check_loads_given``)."""
+    case written first (``case.toml``, ``strand.app.case_toml``); every rank gets the verdict.
+    A run calls it once its strand is built, so that a case that cannot be built writes
+    nothing (``check_folder`` refuses the folder before)."""
     check_loads_given(case)
 
     def prepare() -> Path:

@@ -7,7 +7,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
 
     [mesh]
     length = 1.0              # m, free length between the end sections
-    h_max = 4e-3              # m, largest element (arc length)
+    h_max = 4e-3              # m, largest element (arc length), from the thinnest wire's
+                              #   diameter / 10 to the shortest lay length / 8
 
     [contact]
     normal = "auto"           # auto (director with friction, frozen without) | neighbour | director | frozen
@@ -94,7 +95,7 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     surface_points = 16       # points around each wire's circumference (ranges within 2 %)
     clamp_distance = 0.089    # m, Poffenberger–Swart's distance from the clamp (3.5 in)
     end_zone = 0.0            # m, clamp zone at each end, reported apart from the free span;
-                              #   0: one lay length of the outer layer
+                              #   0: half the longest lay length (how far the ends' lock reaches)
     stuck_slip = 1e-9         # m, pairs that slide less than this stayed stuck throughout
     breaking_strength = 0.0   # N, minimum breaking strength for API RP 2SK's T–N; 0: not given
     spectrum = []             # [[amplitude, cycles], ...]: the cycles in a period (a year, the
@@ -109,15 +110,26 @@ this module checks each value alone, ``strand.app.checks`` the settings against 
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
-from ..cable.description import Cable, CableError, cable_from_dict, cardinal, judge120, load_cable
+from ..cable.description import (
+    CORE_KEYS,
+    LAYER_KEYS,
+    Cable,
+    CableError,
+    cable_from_dict,
+    cardinal,
+    judge120,
+    load_cable,
+)
 from ..cable.input_file import read_text
+from .case_toml import cable_table
 from .errors import CaseError
-from .settings import KIND_SECTIONS, SECTIONS, Case
+from .settings import KIND_SECTIONS, SECTIONS, Case, unit_of
 
 #: ``Case`` (``strand.app.settings``) and ``CaseError`` (``strand.app.errors``) are importable
 #: from here too
@@ -126,6 +138,8 @@ __all__ = [
     "case_from_dict",
     "check_loads_given",
     "parse_settings",
+    "merge_settings",
+    "CableEdits",
 ]
 
 BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
@@ -175,7 +189,8 @@ def _numbers(where: str, key: str, value) -> tuple[float, ...]:
 
 def _value(section: str, key: str, value, default, signed: bool = False):
     """``value`` of ``[section] key`` checked against the type of its ``default``."""
-    where = f"[{section}] {key} = {value!r}"
+    unit = unit_of(section, key) if isinstance(value, int | float) else ""
+    where = f"[{section}] {key} = {value!r}" + (f" {unit}" if unit else "")
     if isinstance(default, bool):
         return _boolean(where, value)
     if isinstance(default, int | float):
@@ -248,6 +263,11 @@ def _section(name: str, table, source: str):
 
 
 def _cable(spec, base: Path | None, source: str) -> Cable:
+    """The cable ``spec`` names (built-in, file or table), with the ``CableEdits`` of the
+    command line when ``spec`` is (named cable, edits)."""
+    if isinstance(spec, tuple):
+        named, edits = spec
+        return _cable(edits.applied(cable_table(_cable(named, base, source))), base, source)
     try:
         if isinstance(spec, str):
             if spec.lower() in BUILTIN_CABLES:
@@ -288,6 +308,8 @@ def _unset_loads(data: dict, case: Case) -> tuple[str, ...]:
     from . import kinds
 
     spec = data.get("cable", "cardinal")
+    if isinstance(spec, tuple):  # a cable edited on the command line: the loads of the one named
+        spec = spec[0]
     if isinstance(spec, str) and spec.lower() == "cardinal":
         return ()
     needed = ["tension"]
@@ -309,30 +331,93 @@ def check_loads_given(case: Case) -> None:
         )
 
 
+class CableEdits(list):
+    """The command line's edits of the case's cable (``--set cable.core.nu=0.28``,
+    ``--set cable.layer.2.E=60e9``, ``--set cable.name=...``), in order: (path, value, item),
+    the path ("core", key), ("layer", n, key) with n from 1 (the innermost helical layer), or
+    ("name",)."""
+
+    def applied(self, table: dict) -> dict:
+        """A copy of the cable's ``table`` (``case_toml.cable_table``'s form) with the edits."""
+        out = {**table, "core": dict(table["core"]), "layer": [dict(t) for t in table["layer"]]}
+        for path, value, item in self:
+            if path[0] == "name":
+                out["name"] = value
+            elif path[0] == "core":
+                out["core"][path[1]] = value
+            else:
+                n = len(out["layer"])
+                if not 1 <= path[1] <= n:
+                    raise CaseError(f"--set {item!r}: the cable {out['name']!r} has layers 1 to "
+                                    f"{n} (layer 1 the innermost helical one)")  # fmt: skip
+                out["layer"][path[1] - 1][path[2]] = value
+        return out
+
+
+_CABLE_KEYS = "cable.name, cable.core.<key>, cable.layer.<n>.<key>"
+
+
+def _cable_path(item: str, parts: list[str]) -> tuple:
+    """The path in the cable of ``--set cable.<parts>=...`` (``CableEdits``), its keys checked."""
+    table, *rest = parts
+    if table == "name" and not rest:
+        return ("name",)
+    if table == "core" and len(rest) == 1:
+        if rest[0] not in CORE_KEYS:
+            raise CaseError(f"--set {item!r}: the cable's core has no key {rest[0]!r}; valid: "
+                            f"{', '.join(sorted(CORE_KEYS))}")  # fmt: skip
+        return ("core", rest[0])
+    if table == "layer" and len(rest) == 2:
+        if not rest[0].isdigit() or int(rest[0]) < 1:
+            raise CaseError(f"--set {item!r}: expected a layer number 1, 2, … after cable.layer "
+                            "(1: the innermost helical layer)")  # fmt: skip
+        if rest[1] not in LAYER_KEYS:
+            raise CaseError(f"--set {item!r}: a cable layer has no key {rest[1]!r}; valid: "
+                            f"{', '.join(sorted(LAYER_KEYS))}")  # fmt: skip
+        return ("layer", int(rest[0]), rest[1])
+    raise CaseError(f"--set {item!r}: expected cable=<name or file> or one of {_CABLE_KEYS}")
+
+
 def parse_settings(items: list[str]) -> dict:
     """``["section.key=value", ...]`` (the command line's ``--set``) as a nested dict of case
-    settings; values are read as TOML (``2e-3``, ``true``, ``[1.0, 0.0]``), or else as strings."""
+    settings; values are read as TOML (``2e-3``, ``true``, ``[1.0, 0.0]``), or else as strings.
+    Keys inside the cable (``cable.core.nu``, ``cable.layer.1.E`` or ``cable.layer[1].E``,
+    ``cable.name``) are ``CableEdits`` under ``"cable"``."""
     out: dict = {}
     for item in items:
         name, eq, text = item.partition("=")
-        section, dot, key = name.strip().rpartition(".")
-        if not eq or not key or (dot and not section) or "." in section:
+        parts = re.sub(r"\[(\w+)\]", r".\1", name.strip()).split(".")
+        if not eq or not all(parts) or (len(parts) > 2 and parts[0] != "cable"):
             raise CaseError(f"--set {item!r}: expected section.key=value, e.g. mesh.h_max=2e-3")
         try:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:
             value = text.strip()
-        if section:
-            out.setdefault(section, {})[key] = value
+        if parts[0] == "cable" and len(parts) > 1:
+            edits = out.setdefault("cable", CableEdits())
+            if not isinstance(edits, CableEdits):
+                raise CaseError(f"--set {item!r}: give the whole cable (--set cable=...) or edit "
+                                "the case's, not both")  # fmt: skip
+            edits.append((_cable_path(item, parts[1:]), value, item))
+        elif len(parts) == 2:
+            out.setdefault(parts[0], {})[parts[1]] = value
+        elif isinstance(out.get(name.strip()), CableEdits):
+            raise CaseError(f"--set {item!r}: give the whole cable (--set cable=...) or edit the "
+                            "case's, not both")  # fmt: skip
         else:
-            out[key] = value
+            out[name.strip()] = value
     return out
 
 
-def _merge(data: dict, overrides: dict) -> dict:
+def merge_settings(data: dict, overrides: dict) -> dict:
+    """A case file's tables ``data`` with the ``overrides`` of ``parse_settings``: each
+    section's keys over the file's; ``CableEdits`` applied to the file's cable (built-in,
+    file or table; Cardinal by default) when the case is read."""
     merged = dict(data)
     for k, v in overrides.items():
-        if isinstance(v, dict) and isinstance(merged.get(k), dict):
+        if isinstance(v, CableEdits):
+            merged[k] = (merged.get(k, "cardinal"), v)
+        elif isinstance(v, dict) and isinstance(merged.get(k), dict):
             merged[k] = {**merged[k], **v}
         else:
             merged[k] = v
@@ -345,7 +430,7 @@ def load_case(path: str | Path | None = None, settings: list[str] = ()) -> Case:
     overrides = parse_settings(list(settings))
     if path is None:
         source = "built-in default" + (" with --set" if settings else "")
-        return case_from_dict(overrides, source=source)
+        return case_from_dict(merge_settings({}, overrides), source=source)
     path = Path(path)
     text = read_text(path, "case file (TOML)", CaseError, missing="case file")
     try:
@@ -354,7 +439,7 @@ def load_case(path: str | Path | None = None, settings: list[str] = ()) -> Case:
         raise CaseError(f"{path}: not valid TOML ({e})") from None
     if "core" in data and "layer" in data:  # a bare cable description is a case too
         data = {"cable": data}
-    data = _merge(data, overrides)
+    data = merge_settings(data, overrides)
     output = data.get("output", {})
     if isinstance(output, dict) and "folder" not in output:  # results/<case name> by default
         data = {**data, "output": {**output, "folder": f"results/{path.stem}"}}

@@ -19,7 +19,23 @@ from . import kinds
 from .errors import CaseError
 from .settings import LINE_SEARCHES, STEP_CONTROLS, Case, FatigueSettings
 
-__all__ = ["checked_case"]
+__all__ = ["checked_case", "h_max_range"]
+
+#: elements no shorter than the thinnest wire's diameter over this: a beam (a wire's centre line
+#: and section) holds nothing shorter than its diameter, and finer elements only add unknowns
+#: (the default 4 mm is 1.2 diameters of Cardinal's wires, a convergence check's half 0.6)
+_FINEST = 10
+#: elements no longer than the shortest lay length over this: the two-node elements draw each
+#: turn of a helix as a polygon of at least this many sides, whose chords stray from the helix
+#: by at most r (1 − cos(π/8)) = 7.6 % of its radius
+_TURN = 8
+
+
+def h_max_range(cable: Cable) -> tuple[float, float]:
+    """The ``[mesh] h_max`` (m) a run of ``cable`` accepts (``_FINEST``, ``_TURN``)."""
+    thinnest = min(layer.wire.diameter for layer in cable.layers)
+    shortest = min(layer.pitch for layer in cable.layers)
+    return thinnest / _FINEST, shortest / _TURN
 
 
 def checked_case(case: Case) -> Case:
@@ -54,6 +70,13 @@ def _check_steps_and_load(case: Case) -> None:
         raise CaseError(
             f"[mesh] h_max = {mesh.h_max} m must be shorter than the span [mesh] length = "
             f"{mesh.length} m"
+        )
+    low, high = h_max_range(case.cable)
+    if not low <= mesh.h_max <= high:
+        raise CaseError(
+            f"[mesh] h_max = {mesh.h_max:g} m is out of range [{low:.3g}, {high:.3g}] m for this "
+            f"cable: from the thinnest wire's diameter / {_FINEST} (a beam resolves nothing "
+            f"shorter) to the shortest lay length / {_TURN} (a helix needs {_TURN} elements a turn)"
         )
     kinds.kind_of(case).check_case(case)
     if load.sweep and not any(load.cycle):

@@ -26,7 +26,8 @@ strand spectrum history.csv --column lateral_N [--bins 3]
                           count the cycles of a load history by rainflow and print the
                           [fatigue] spectrum to paste into a case file
 
---set section.key=value changes one setting of the case (repeatable), e.g. --set mesh.length=0.5.
+--set section.key=value changes one setting of the case (repeatable), e.g. --set mesh.length=0.5;
+in the cable: --set cable.core.nu=0.28, --set cable.layer.2.E=60e9 (layer 1: the innermost).
 Exit codes: 0 done, 2 bad input (one line on stderr, nothing computed), 3 a load step failed,
 130 interrupted (Ctrl-C); a stopped run keeps every step written so far, with its summary.
 """

@@ -102,21 +102,21 @@ def compare_case(
     """Run ``case`` with both contact models into ``folder``/small and ``folder``/large (default
     folder: the case's output folder + ``/sliding_comparison``); return the comparison text,
     also written to ``comparison.txt`` there. Both folders are checked before either run
-    (``folder.prepare_results_folder``; ``overwrite`` replaces an earlier comparison). Both
+    (``folder.check_results_folder``; ``overwrite`` replaces an earlier comparison). Both
     run without same-layer contact, which large sliding does not have."""
     from ..model.parallel import is_root, on_root, root_stream
-    from .folder import prepare_results_folder
+    from .folder import check_results_folder
     from .run import run_case
 
     stream = root_stream(stream or sys.stdout)
     folder = Path(folder or Path(case.output.folder) / "sliding_comparison")
     for model in ("small", "large"):
-        on_root(lambda model=model: prepare_results_folder(folder / model, overwrite))
+        on_root(lambda model=model: check_results_folder(folder / model, overwrite))
     results = {}
     for model in ("small", "large"):
         print(f"--- contact model: {model} sliding ---", file=stream, flush=True)
         variant = replace(case, contact=replace(case.contact, model=model, same_layer="off"))
-        results[model] = run_case(variant, folder / model, stream)
+        results[model] = run_case(variant, folder / model, stream, overwrite)
         if results[model].interrupted:
             raise KeyboardInterrupt
     small, large = results["small"], results["large"]

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..cable.pictures import offscreen_plotter, save
 
-__all__ = ["results_figures", "fatigue_figures", "save_figure"]
+__all__ = ["results_figures", "fatigue_figures", "stress_range_figure", "save_figure"]
 
 
 def results_figures(case, result, problem, kind_figures: Callable[[str], list[Path]]) -> list[Path]:
@@ -124,7 +124,9 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
     at the largest load and coloured by wire axial force, seen across the load. Displacements are
     magnified (``magnification``: the largest across the strand's axis shown as up to half the
-    strand's diameter), the factor in the title."""
+    strand's diameter), the factor in the title (two lines, shrunk to fit the picture:
+    ``fit_text``); two rulers give the scale: z along the strand (mm, true scale) under it, and
+    beyond its right end the deflection (mm, as magnified) down from the undeformed axis."""
     import pyvista
 
     g = problem.geometry
@@ -141,28 +143,80 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     grid.cell_data["N (N)"] = peak.axial[shown]
     radius = case.cable.layers[-1].wire.diameter / 2
     grid = grid.cell_data_to_point_data().tube(radius=radius, n_sides=16)
-    plotter = offscreen_plotter(window_size=(1800, 650))
+    width, height = 1800, 650
+    plotter = offscreen_plotter(window_size=(width, height))
     plotter.add_mesh(
         grid, scalars="N (N)", cmap="coolwarm",
-        scalar_bar_args={"title": "N (N)\n", "vertical": True, "height": 0.65, "width": 0.05,
-                         "position_x": 0.9, "position_y": 0.15, "title_font_size": 18,
-                         "label_font_size": 14, "fmt": "%.0f", "n_labels": 5},
+        scalar_bar_args={"title": "wire axial force N (N)", "vertical": False, "height": 0.06,
+                         "width": 0.4, "position_x": 0.3, "position_y": 0.04,
+                         "title_font_size": 16, "label_font_size": 14, "fmt": "%.0f",
+                         "n_labels": 5, "color": "black"},
     )  # fmt: skip
     P = result.peak_step.load
-    plotter.add_text(
+    shown_as = f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"
+    title = plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
-        f"midspan, at P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
-        + (f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"),
-        position="upper_edge", font_size=10,
+        f"midspan\nat P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
+        f"{shown_as}",
+        position=(0.5, 0.97), viewport=True, font_size=12, color="black", name="title",
     )  # fmt: skip
+    title.GetTextProperty().SetJustificationToCentered()
+    title.GetTextProperty().SetVerticalJustificationToTop()
     if note:
         plotter.add_text(note, position="lower_left", font_size=9, color="red")
     d = np.asarray(case.load.direction, float) * np.sign(P or 1.0)
-    side = np.cross([0.0, 0.0, 1.0], d)
-    plotter.view_vector(side, viewup=-d)
+    axis = np.array([0.0, 0.0, 1.0])
+    start, end = (L / 2 - half) * axis, (L / 2 + half) * axis
+    below = d * 1.25 * D  # the picture's down is d: under the deflected strand
+    along = plotter.add_ruler(start + below, end + below, title="z (mm, true scale)",
+                              number_labels=5, label_format="%.0f", font_size_factor=0.45,
+                              label_color="black", tick_color="black")  # fmt: skip
+    along.SetRange(1e3 * start[2], 1e3 * end[2])
+    step = _round_length(D / (2 * factor))  # a displacement shown as up to D/2
+    beside = end + 0.15 * half * axis
+    plotter.add_ruler(beside + d * step * factor, beside, flip_range=True, scale=1e3 / factor,
+                      title="deflection (mm)", number_labels=2, label_format="%.3g",
+                      font_size_factor=0.45, label_color="black", tick_color="black")  # fmt: skip
+    # seen across the load, the load downwards and z to the right, in parallel projection: the
+    # shown length over 80 % of the width, a little left of the middle, the axis above it (set
+    # after the rulers, which reset the camera)
+    plotter.view_vector(-np.cross(axis, d), viewup=-d)
+    plotter.enable_parallel_projection()
     plotter.reset_camera()
-    plotter.camera.zoom(1.5)
+    camera, middle = plotter.camera, (L / 2 + 0.1 * half) * axis + 0.5 * D * d
+    camera.position = middle + (np.asarray(camera.position) - np.asarray(camera.focal_point))
+    camera.focal_point = middle
+    camera.parallel_scale = 2 * half / 0.8 / (width / height) / 2
+    fit_text(plotter, title)
     return save(plotter, path)
+
+
+def _round_length(length: float) -> float:
+    """The largest 1, 2 or 5 × 10^k not above ``length`` (> 0)."""
+    decade = 10.0 ** np.floor(np.log10(length))
+    return float(max(f * decade for f in (1, 2, 5) if f * decade <= length * (1 + 1e-12)))
+
+
+def text_extent(plotter, actor) -> tuple[float, float, float, float]:
+    """The extent of the text ``actor`` in the rendered picture (pixels: x0, x1, y0, y1)."""
+    plotter.render()
+    box = [0.0] * 4
+    actor.GetBoundingBox(plotter.renderer, box)  # about the actor's own position
+    x, y = actor.GetPositionCoordinate().GetComputedDisplayValue(plotter.renderer)
+    return x + box[0], x + box[1], y + box[2], y + box[3]
+
+
+def fit_text(plotter, actor, margin: float = 0.02, smallest: int = 8) -> tuple[float, ...]:
+    """Shrink the font of the text ``actor`` until it lies within the picture, ``margin`` of its
+    width from either edge (down to ``smallest`` points); its extent (``text_extent``)."""
+    width, height = plotter.window_size
+    prop = actor.GetTextProperty()
+    while True:
+        x0, x1, y0, y1 = box = text_extent(plotter, actor)
+        if (x0 >= margin * width and x1 <= (1 - margin) * width and y0 >= 0 and y1 <= height
+                or prop.GetFontSize() <= smallest):  # fmt: skip
+            return box
+        prop.SetFontSize(prop.GetFontSize() - 1)
 
 
 def fatigue_figures(folder, report) -> list[Path]:
@@ -210,27 +264,75 @@ def fatigue_figures(folder, report) -> list[Path]:
                  "dashed: clamp zones)", fontsize=10)  # fmt: skip
     paths = [save_figure(fig, folder / "fretting_map.png", None, False)]
 
-    s, e = read_history(folder / "wire_sections.h5").static, report.elements
+    s = read_history(folder / "wire_sections.h5").static
+    paths.append(stress_range_figure(folder / "stress_range.png", s, report))
+    return paths
+
+
+def stress_range_figure(path: Path, sections: dict, report) -> Path:
+    """``stress_range.png``: the outer wires' largest surface stress range along z (one line per
+    wire, the clamp zones dashed; Poffenberger–Swart's 2σ_a at the clamp where it holds) beside
+    their layer's S–N curve, Δσ = 2σ_a against the cycles to failure N, with each outer wire's
+    largest range in the free span and in the clamp zone placed on it at its life."""
+    import matplotlib.pyplot as plt
+
+    s, e = sections, report.elements
     outer = s["layer"] == s["layer"].max()
-    fig, ax = plt.subplots(figsize=(9, 4))
+    layer = int(s["layer"].max())
+    fig, (ax, sn) = plt.subplots(1, 2, figsize=(12, 4.5), width_ratios=(1.6, 1))
     for w in np.unique(s["wire"][outer]):
         m = s["wire"] == w
         ax.plot(1e3 * s["z"][m], 1e-6 * e["range"][m], lw=0.6, alpha=0.7)
+    for z in (report.end_zone, report.length - report.end_zone):
+        if 0 < z < report.length:
+            ax.axvline(1e3 * z, color="k", ls="--", lw=0.6)
     ps = report.poffenberger_swart
     if ps is not None and ps["holds"]:
-        ax.plot(
-            [0],
-            [2e-6 * ps["sigma_a"]],
-            "k*",
-            ms=10,
-            label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)",
-        )
-        ax.legend()
-    ax.set(
-        xlabel="z (mm)",
-        ylabel="largest surface stress range (MPa)",
-        title="outer wires: surface stress range over the history (one line per wire)",
-    )
+        ax.plot([0], [2e-6 * ps["sigma_a"]], "k*", ms=10,
+                label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)")  # fmt: skip
+        ax.legend(fontsize=8)
+    ax.set(xlabel="z (mm)", ylabel="largest surface stress range Δσ (MPa)",
+           title="along the strand (one line per wire; dashed: clamp zones)")  # fmt: skip
     ax.grid(alpha=0.3)
-    paths.append(save_figure(fig, folder / "stress_range.png", None, True))
-    return paths
+    curve = report.curves[layer] if len(report.curves) > layer else None
+    if curve is None:
+        sn.text(0.5, 0.5, f"layer {layer}: not assessed\n(no S–N curve for its wires)",
+                ha="center", va="center", transform=sn.transAxes)  # fmt: skip
+        sn.set_axis_off()
+    else:
+        w = report.wires
+        n = np.logspace(3, 10, 200)
+        sn.loglog(n, _sn_range(curve, n), "k-", lw=1.5, label=_wrap(curve.name, 45), zorder=2)
+        lowest = _sn_range(curve, n[-1])
+        for suffix, marker, zone in (("_free", "o", "free span"), ("_clamp", "x", "clamp zone")):
+            r = w["range" + suffix][(w["layer"] == layer) & (w["range" + suffix] > 0)]
+            if len(r):
+                sn.plot(curve.life(r / 2), 1e-6 * r, marker, ms=6, color="tab:red", zorder=3,
+                        mfc="none", label=f"outer wires' largest range, {zone}")  # fmt: skip
+                lowest = min(lowest, 1e-6 * r.min())
+        sn.set(
+            xlabel="cycles to failure N",
+            ylabel="stress range Δσ = 2σ_a (MPa)",
+            title=f"layer {layer}'s S–N curve",
+            xlim=(n[0], n[-1]),
+            ylim=(lowest / 1.5, None),
+        )
+        sn.grid(alpha=0.3, which="both")
+        sn.legend(fontsize=7, loc="upper right")
+    fig.suptitle("outer wires: surface stress range over the history against the S–N curve")
+    return save_figure(fig, path, None, True)
+
+
+def _sn_range(curve, n) -> np.ndarray:
+    """The stress range Δσ = 2σ_a (MPa) at which ``curve`` gives ``n`` cycles to failure."""
+    n = np.asarray(n, float)
+    high = curve.A * n**curve.b
+    if not curve.A2:
+        return 2 * high
+    return 2 * np.where(n <= curve.knee, high, curve.A2 * n**curve.b2)
+
+
+def _wrap(text: str, width: int) -> str:
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, width))

@@ -11,7 +11,8 @@ with per-step recorders that write as the run goes (so that a failed step loses 
 * ``moment_curvature.csv`` — the set-up's bending measures at every step of the cycle;
 * PNG figures at the end (``plots.results_figures``) and ``summary.txt``.
 
-The folder is checked before any computing and never mixes two runs (``folder.py``). Ctrl-C
+The folder is checked before any computing, written only once the strand is built (a case that
+fails to build leaves it as it was), and never mixes two runs (``folder.py``). Ctrl-C
 stops the run at the last converged step, with its summary and figures.
 
 The jobs are modules of their own, their main names importable from here too: ``strand.app.build``
@@ -30,7 +31,7 @@ from pathlib import Path
 from ..model.checkpoint import read_checkpoint
 from ..model.parallel import root_stream
 from .build import build_problem as build_problem
-from .build import restart_from, results_folder
+from .build import check_folder, restart_from, results_folder
 from .build import setup_and_programme as setup_and_programme
 from .run_result import RunResult as RunResult
 from .run_result import Start as Start
@@ -59,12 +60,15 @@ def run_case(
     checkpoint = None
     if restart is not None:
         checkpoint = read_checkpoint(restart)
-    folder = results_folder(case, folder or case.output.folder, overwrite, restart)
+    folder = folder or case.output.folder
+    check_folder(case, folder, overwrite)  # refused before anything is built
     problem, programme = build_problem(case, stream)
     try:
         start = (
             None if checkpoint is None else restart_from(problem, programme, checkpoint, restart)
         )
+        # written once the strand is built and restored: a case that cannot be leaves it be
+        folder = results_folder(case, folder, overwrite, restart)
         return run_programme_with_outputs(case, problem, programme, folder, stream, start, t_start)
     finally:
         problem.solver.destroy()

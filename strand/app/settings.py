@@ -10,11 +10,10 @@ these. Units: SI, in the comments.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from functools import partial
-from typing import Any
+from typing import Any, ClassVar
 
 from ..cable.description import Cable
 from ..model.contact_settings import ContactSettings
@@ -28,13 +27,17 @@ __all__ = [
     "FatigueSettings",
     "WithKinds",
     "KIND_SECTIONS",
+    "unit_of",
 ]
 
 
 @dataclass(frozen=True)
 class MeshSettings:
     length: float = 1.0  # m
-    h_max: float = 4e-3  # m
+    h_max: float = 4e-3  # m, largest element: thinnest wire diameter / 10 to shortest lay / 8
+
+    #: the SI unit of every number ("" for a ratio or a count): error messages give it
+    UNITS: ClassVar[dict[str, str]] = {"length": "m", "h_max": "m"}
 
 
 #: the sections whose keys include the set-up kinds' own, and each kind's attribute for them
@@ -85,6 +88,8 @@ class LoadSettings(WithKinds):
     sweep: tuple[float, ...] = ()  # amplitudes (N or 1/m), each cycled from one tensioned state
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "load"), hash=False)
 
+    UNITS: ClassVar[dict[str, str]] = {"tension": "N"}
+
 
 @dataclass(frozen=True)
 class StepSettings(WithKinds):
@@ -102,6 +107,10 @@ class StepSettings(WithKinds):
     predictor: bool = True  # start each solve from the secant predictor of the ramp's last step
     iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
+
+    UNITS: ClassVar[dict[str, str]] = {"tension": "N", "growth": "", "cuts": "",
+                                       "max_iterations": "", "tolerance": "N", "balance": "",
+                                       "error_tolerance": "m"}  # fmt: skip
 
 
 #: PETSc's line searches for Newton (``[steps] line_search``)
@@ -132,10 +141,15 @@ class FatigueSettings:
     steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, or "none"
     surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
     clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
-    end_zone: float = 0.0  # m, clamp zone at each end; 0: one lay length of the outer layer
+    end_zone: float = 0.0  # m, clamp zone at each end; 0: half the longest lay length
     stuck_slip: float = 1e-9  # m, a pair whose Coulomb slide stays below this stuck throughout
     breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
     spectrum: tuple[tuple[float, float], ...] = ()  # [[amplitude, cycles], ...]: run as the sweep
+
+    UNITS: ClassVar[dict[str, str]] = {"sn_A": "MPa", "sn_b": "", "sn_knee": "cycles",
+                                       "sn_A2": "MPa", "sn_b2": "", "surface_points": "",
+                                       "clamp_distance": "m", "end_zone": "m", "stuck_slip": "m",
+                                       "breaking_strength": "N"}  # fmt: skip
 
     def curve(self):
         """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
@@ -165,12 +179,11 @@ class FatigueSettings:
         ]  # fmt: skip
 
     def end_zone_length(self, cable: Cable) -> float:
-        """The clamp zone's length at each end (m): ``end_zone``, or one lay length of the outer
-        layer (the core's length 0 for a bare core)."""
-        if self.end_zone > 0:
-            return self.end_zone
-        pitch = cable.layers[-1].pitch
-        return pitch if math.isfinite(pitch) else 0.0
+        """The clamp zone's length at each end (m): ``end_zone``, or how far the end sections'
+        lock on the wires reaches, half the longest lay length (``strand.fatigue.zones``)."""
+        from ..fatigue.zones import lock_reach
+
+        return self.end_zone if self.end_zone > 0 else lock_reach(cable)
 
 
 @dataclass(frozen=True)
@@ -197,3 +210,18 @@ SECTIONS = {
     "output": OutputSettings,
     "fatigue": FatigueSettings,
 }
+
+
+def unit_of(section: str, key: str) -> str:
+    """The SI unit of the number ``[section] key`` (its settings class's ``UNITS``, or a set-up
+    kind's own); "" for a ratio, a count or a setting that is not a number."""
+    classes = [SECTIONS[section]]
+    if section in KIND_SECTIONS:
+        from .kinds.registry import registered
+
+        classes += [getattr(kind, KIND_SECTIONS[section]) for kind in registered()]
+    for cls in classes:
+        units = getattr(cls, "UNITS", {})
+        if key in units:
+            return units[key]
+    return ""

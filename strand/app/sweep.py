@@ -19,8 +19,14 @@ import numpy as np
 from ..model.checkpoint import restore
 from ..model.parallel import is_root, on_root, root_stream
 from ..model.programme import LoadProgramme, Position
-from .build import build_problem, results_folder, settings_text, setup_and_programme
-from .folder import FolderError, writable_folder
+from .build import (
+    build_problem,
+    check_folder,
+    results_folder,
+    settings_text,
+    setup_and_programme,
+)
+from .folder import FolderError, check_writable, writable_folder
 from .kinds import kind_of
 from .run_result import RunResult, Start
 from .runner import run_programme_with_outputs
@@ -42,13 +48,15 @@ def run_sweep(
     kind = kind_of(case)
     parameter = kind.parameter
     names = {a: f"{parameter}_{a:g}" for a in case.load.sweep}
-    top = on_root(lambda: _sweep_folder(folder, overwrite, case))
-    folders = {
-        key: results_folder(case, top / key, overwrite) for key in ["tension", *names.values()]
-    }
+    keys = ["tension", *names.values()]
+    on_root(lambda: _check_sweep_folder(folder, overwrite))  # refused before anything is built
+    for key in keys:
+        check_folder(case, folder / key, overwrite)
     problem, programme = build_problem(case, stream)
     results = []
     try:
+        top = on_root(lambda: _sweep_folder(folder, overwrite, case))  # once the strand is built
+        folders = {key: results_folder(case, top / key, overwrite) for key in keys}
         tension = LoadProgramme(programme.stages[:1], parameter)
         print(f"--- sweep: tension, then {parameter} amplitudes {list(case.load.sweep)} ---",
               file=stream, flush=True)  # fmt: skip
@@ -88,20 +96,30 @@ def run_sweep(
     return [tensioned, *results]
 
 
-def _sweep_folder(folder: Path, overwrite: bool, case: Case) -> Path:
-    """The sweep's own folder: it holds the members' folders and the sweep table."""
-    path = writable_folder(folder)
-    marker = path / "sweep.txt"  # written first
-    others = [p for p in path.iterdir() if not p.name.startswith(".") and p.is_file()]
+def _check_sweep_folder(folder: Path, overwrite: bool) -> list[Path]:
+    """Refuse (``FolderError``) a folder the sweep may not use, writing nothing; the files an
+    earlier sweep left at its top otherwise."""
+    check_writable(folder)
+    if not folder.is_dir():
+        return []
+    marker = folder / "sweep.txt"  # written first
+    others = [p for p in folder.iterdir() if not p.name.startswith(".") and p.is_file()]
     if others and not marker.exists():
-        raise FolderError(f"{path}: holds files that are not a strand sweep's; give another folder")
+        raise FolderError(f"{folder}: holds files that are not a strand sweep's; give another "
+                          "folder")  # fmt: skip
     if marker.exists() and not overwrite:
         raise FolderError(
-            f"{path}: holds an earlier sweep; give another folder (--out) or replace it "
+            f"{folder}: holds an earlier sweep; give another folder (--out) or replace it "
             "(--overwrite)"
         )
-    for p in others:
+    return others
+
+
+def _sweep_folder(folder: Path, overwrite: bool, case: Case) -> Path:
+    """The sweep's own folder: it holds the members' folders and the sweep table."""
+    for p in _check_sweep_folder(folder, overwrite):
         p.unlink()
+    path = writable_folder(folder)
     (path / "sweep.txt").write_text(settings_text(case))
     return path
 

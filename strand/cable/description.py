@@ -17,7 +17,17 @@ from pathlib import Path
 
 from .input_file import read_text
 
-__all__ = ["CableError", "Wire", "Layer", "Cable", "load_cable", "cardinal", "judge120"]
+__all__ = [
+    "CableError",
+    "Wire",
+    "Layer",
+    "Cable",
+    "load_cable",
+    "cardinal",
+    "judge120",
+    "CORE_KEYS",
+    "LAYER_KEYS",
+]
 
 
 class CableError(ValueError):
@@ -92,8 +102,15 @@ class Cable:
         return sum(lay.wires for lay in self.layers)
 
 
-_CORE_KEYS = {"diameter", "E", "nu", "friction", "yield_stress"}
-_LAYER_KEYS = {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
+#: the fields of the core's table and of a layer's
+CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", "yield_stress"})
+LAYER_KEYS = frozenset({"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction",
+                        "yield_stress"})  # fmt: skip
+
+
+#: the unit of each number of a core's or a layer's table, as error messages give it
+UNITS = {"diameter": "m", "E": "Pa", "nu": "", "yield_stress": "Pa", "lay_angle": "°",
+         "friction": ""}  # fmt: skip
 
 
 def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, closed_low=False):
@@ -104,8 +121,13 @@ def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, c
         raise CableError(f"{where}.{key}: expected a number, got {v!r}")
     ok = (v >= low if closed_low else v > low) and v < high
     if not ok:
-        bounds = f"{'[' if closed_low else '('}{low:g}, {high:g})"
-        raise CableError(f"{where}.{key} = {v!r} is out of range {bounds}")
+        unit = UNITS[key]
+        if unit == "°":
+            value, bounds = f"{v:g}°", f"{'[' if closed_low else '('}{low:g}°, {high:g}°)"
+        else:
+            unit = f" {unit}" if unit else ""
+            value, bounds = f"{v:g}{unit}", f"{'[' if closed_low else '('}{low:g}, {high:g}){unit}"
+        raise CableError(f"{where}.{key} = {value} is out of range {bounds}")
     return float(v)
 
 
@@ -135,7 +157,7 @@ def cable_from_dict(data: dict) -> Cable:
     if not isinstance(layers_in, list) or not layers_in:
         raise CableError("cable: at least one [[layer]] of helical wires is needed")
     core = data["core"]
-    _check_keys(core, _CORE_KEYS, "core")
+    _check_keys(core, CORE_KEYS, "core")
     layers = [
         Layer(1, _wire(core, "core"), 0.0, "-", _number(core, "friction", "core", 0.0, 10, True))
     ]
@@ -143,7 +165,7 @@ def cable_from_dict(data: dict) -> Cable:
     previous = layers[0].wire.diameter
     for i, lay in enumerate(layers_in, start=1):
         where = f"layer[{i}]"
-        _check_keys(lay, _LAYER_KEYS, where)
+        _check_keys(lay, LAYER_KEYS, where)
         wire = _wire(lay, where)
         if "wires" not in lay:
             raise CableError(f"{where}: missing field 'wires'")

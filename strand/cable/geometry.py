@@ -19,6 +19,7 @@ Every contact point is a mesh node of both wires; elements are then split so tha
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -175,6 +176,13 @@ def build_geometry(
     if not h_max > 0:
         raise CableError(f"h_max = {h_max!r} m: must be positive")
     layers = cable.layers
+    steepest = max(layer.alpha for layer in layers)
+    if not h_max * math.cos(steepest) > merge_tol:
+        raise CableError(
+            f"h_max = {h_max!r} m: elements must span more than merge_tol = {merge_tol!r} m along "
+            f"the axis (h_max > {merge_tol / math.cos(steepest):.4g} m here): nodes closer than "
+            "that merge"
+        )
     n_layers = len(layers)
     wire_layer = np.concatenate(
         [np.full(lay.wires, i, dtype=np.int32) for i, lay in enumerate(layers)]

@@ -17,7 +17,7 @@ from .sn import SN_CURVES, SNCurve, miner_damage, wire_material
 from .spectrum import Spectrum, reduce_history, spectrum_classes, spectrum_damage
 from .stress import section_components, section_frames, shear_stress, surface_stress
 from .tn import api_spiral_strand_life, dnv_spiral_rope_life, tension_damage
-from .zones import ZONES, in_clamp_zone
+from .zones import ZONES, free_span, in_clamp_zone, lock_reach
 
 __all__ = [
     "Cycles",
@@ -42,6 +42,8 @@ __all__ = [
     "tension_damage",
     "ZONES",
     "in_clamp_zone",
+    "free_span",
+    "lock_reach",
     "section_components",
     "section_frames",
     "shear_stress",

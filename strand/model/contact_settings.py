@@ -8,6 +8,7 @@ They choose the contact normal (``strand.contact.element.resolve_normal``), the 
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import ClassVar
 
 from ..cable.description import CableError
 from ..contact.element import check_slip, resolve_normal
@@ -82,6 +83,10 @@ class ContactSettings:
     same_layer_stencil: str = "segment"
     slip: str = "surface"
 
+    #: the SI unit of every number (error messages give it)
+    UNITS: ClassVar[dict[str, str]] = {"k_point": "N/m", "k_line": "N/m²", "g_lim": "m",
+                                       "reach": "m"}  # fmt: skip
+
     def __post_init__(self):
         try:
             object.__setattr__(self, "normal", resolve_normal(self.normal, self.friction))
@@ -110,7 +115,8 @@ class ContactSettings:
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):
-                raise CableError(f"contact {name} = {value!r}: must be a positive number")
+                raise CableError(f"contact {name} = {value!r} {self.UNITS[name]}: must be a "
+                                 "positive number")  # fmt: skip
         if self.compliance != "penalty":
             defaults = {f.name: f.default for f in fields(self)}
             given = [n for n in ("k_point", "k_line", "g_lim") if getattr(self, n) != defaults[n]]

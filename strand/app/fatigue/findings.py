@@ -4,7 +4,7 @@ from here, so neither imports the other back."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
@@ -29,3 +29,4 @@ class FatigueReport:
     end_zone: float = 0.0  # m, the clamp zone's length at each end
     length: float = 0.0  # m, the span
     tension_check: dict | None = None  # the strand-level T–N check (``tension_check``)
+    curves: list = field(default_factory=list)  # per layer its S–N curve, None: not assessed

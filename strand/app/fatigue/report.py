@@ -302,7 +302,7 @@ def fatigue_report(
                                  settings.clamp_distance)
         if clamp else None
     )  # fmt: skip
-    report = FatigueReport(cycles, crossings, elements, wires, ps, "", end_zone, length, tn)
+    report = FatigueReport(cycles, crossings, elements, wires, ps, "", end_zone, length, tn, curves)
     report.text = summary_text(pairs, sections, cable, curves, settings, report)
     if write:
         write_report(folder, pairs, sections, report)

@@ -33,6 +33,7 @@ from ...fatigue.spectrum import spectrum_damage
 from ...fatigue.tn import TENSION_CYCLE_SHARE
 from ...fatigue.zones import ZONES, zone_names
 from ..settings import Case
+from .text import no_free_span
 
 __all__ = ["SpectrumError", "SpectrumReport", "spectrum_report", "write_spectrum"]
 
@@ -59,6 +60,7 @@ class SpectrumReport:
     wires: dict[str, Array]
     tension: dict
     end_zone: float
+    length: float = 0.0  # m, the span
     text: str = ""
 
 
@@ -141,7 +143,8 @@ def spectrum_report(case: Case, results: list, parameter: str, unit: str) -> Spe
     wires = _wire_rows(elements, first.wires["curve"])
     names = [f"{parameter}_{a:g}" for a in amplitudes]
     report = SpectrumReport(parameter, unit, amplitudes, counts, names, elements, crossings,
-                            wires, _tension(reports, counts), first.end_zone)  # fmt: skip
+                            wires, _tension(reports, counts), first.end_zone,
+                            first.length)  # fmt: skip
     report.text = spectrum_text(report)
     return report
 
@@ -232,7 +235,8 @@ def spectrum_text(r: SpectrumReport) -> str:
     for zone in ZONES:
         where = "" if zone == ZONES[0] else f" (within {r.end_zone:.3g} m of an end)"
         if not np.any(r.wires["zone"] == zone):
-            lines.append(f"{zone}{where}: none (the span is shorter than two end zones)")
+            lines.append(no_free_span(r.length, r.end_zone) if zone == ZONES[0] else
+                         f"{zone}{where}: none: no element lies within it")  # fmt: skip
             continue
         lines += [f"{zone}{where}:", *_zone_lines(r, zone)]
     return "\n".join(lines + _tension_lines(r)) + "\n"

@@ -13,13 +13,23 @@ import numpy as np
 
 from ...cable.description import Cable
 from ...fatigue.tn import TENSION_CYCLE_SHARE
-from ...fatigue.zones import ZONES
+from ...fatigue.zones import ZONES, free_span
 
 if TYPE_CHECKING:
     from ..settings import FatigueSettings
     from .findings import FatigueReport
 
-__all__ = ["summary_text"]
+__all__ = ["summary_text", "no_free_span"]
+
+
+def no_free_span(length: float, end_zone: float) -> str:
+    """The report's one line for a span that two clamp zones leave no free span: what span, or
+    what end zone, would leave one."""
+    return (
+        f"{ZONES[0]}: none: the span {length:.4g} m is not longer than two end zones (2 × "
+        f"{end_zone:.4g} m, [fatigue] end_zone); a span longer than {2 * end_zone:.4g} m, or an "
+        f"end_zone shorter than {length / 2:.4g} m, leaves one"
+    )
 
 
 def _crossing_line(st, c, k) -> str:
@@ -135,14 +145,17 @@ def summary_text(pairs, sections, cable: Cable, curves: list, settings: FatigueS
         *_curve_lines(cable, curves),
     ]
     e_clamp, w_layers = r.elements["clamp"], r.wires["layer"]
+    span = free_span(r.length, r.end_zone)
     for zone, on in zip(ZONES, (False, True), strict=True):
-        where = (f"z in [{r.end_zone:.4g}, {r.length - r.end_zone:.4g}] m" if not on else
-                 f"within {r.end_zone:.4g} m of an end")  # fmt: skip
         mask_e = e_clamp == on
-        if not mask_e.any():
-            lines.append(f"{zone} ({where}): none: the span {r.length:.4g} m is not longer than "
-                         f"two end zones ([fatigue] end_zone)")  # fmt: skip
+        if not on and (span is None or not mask_e.any()):
+            lines.append(no_free_span(r.length, r.end_zone))
             continue
+        if not mask_e.any():
+            lines.append(f"{zone}: none: no element lies within {r.end_zone:.4g} m of an end")
+            continue
+        where = f"z in [{span[0]:.4g}, {span[1]:.4g}] m" if not on else (
+            f"within {r.end_zone:.4g} m of an end")  # fmt: skip
         lines.append(f"{zone} ({where}):")
         lines += _zone_text(zone, pairs, sections, r, c["clamp"] == on, mask_e,
                             np.ones(len(w_layers), bool))  # fmt: skip

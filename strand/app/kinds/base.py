@@ -44,7 +44,8 @@ class SetupKind(ABC):
         measure: the field of its set-up's ``state()`` a sweep reports at the peak and back at
             zero load.
         load_settings, step_settings: frozen dataclasses of its own ``[load]`` and ``[steps]``
-            settings, with their defaults (names distinct from every other setting there).
+            settings, with their defaults (names distinct from every other setting there); a
+            class dict ``UNITS`` (setting → SI unit) puts the units into error messages.
         signed: its ``[load]`` settings that may be zero or negative.
         clamp: the set-up clamps the strand at z = 0 (the fatigue report's Poffenberger–Swart
             check at the clamp).
@@ -77,7 +78,8 @@ class SetupKind(ABC):
         may not exceed the largest."""
         first, largest = self.step_sizes(steps)
         if first > largest:
-            raise CaseError(f"[steps] {self.parameter} = {first} exceeds {self.parameter}_max")
+            raise CaseError(f"[steps] {self.parameter} = {first} {self.unit} exceeds "
+                            f"{self.parameter}_max = {largest} {self.unit}")  # fmt: skip
 
     def check_case(self, case: Case) -> None:
         """Check a case of this kind against its mesh and common settings (``CaseError``)."""

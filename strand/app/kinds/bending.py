@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from functools import partial
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -45,6 +46,8 @@ class BendingLoad:
     curvature: float = 0.5  # 1/m, nominal curvature amplitude
     zone: float = 0.4  # m, central zone where the curvature is measured
 
+    UNITS: ClassVar[dict[str, str]] = {"curvature": "1/m", "zone": "m"}
+
 
 @dataclass(frozen=True)
 class BendingSteps:
@@ -52,6 +55,8 @@ class BendingSteps:
 
     curvature: float = 0.005  # 1/m, first curvature increment of each leg
     curvature_max: float = 0.05  # 1/m, largest curvature increment
+
+    UNITS: ClassVar[dict[str, str]] = {"curvature": "1/m", "curvature_max": "1/m"}
 
 
 class UniformBending(SetupKind):

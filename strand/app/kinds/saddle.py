@@ -34,6 +34,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -73,6 +74,9 @@ class SaddleLoad:
     deflection: float = 0.0  # m, displacement control: midspan deflection amplitude; 0: none
     yb: float = 0.0  # m, displacement control: Y_b, peak-to-peak at [fatigue] clamp_distance
 
+    UNITS: ClassVar[dict[str, str]] = {"lateral": "N", "saddle_length": "m", "deflection": "m",
+                                       "yb": "m"}  # fmt: skip
+
 
 @dataclass(frozen=True)
 class SaddleSteps:
@@ -86,6 +90,9 @@ class SaddleSteps:
     deflection_max: float = 2e-3  # m, largest deflection increment
     yb: float = 5e-5  # m, displacement control: first yb increment of a leg
     yb_max: float = 2e-4  # m, largest yb increment
+
+    UNITS: ClassVar[dict[str, str]] = {"lateral": "N", "lateral_max": "N", "deflection": "m",
+                                       "deflection_max": "m", "yb": "m", "yb_max": "m"}  # fmt: skip
 
 
 class Saddle(SetupKind):
@@ -105,9 +112,10 @@ class Saddle(SetupKind):
         super().check_settings(load, steps)
         for name in DISPLACEMENTS:
             if getattr(steps, name) > getattr(steps, f"{name}_max"):
-                raise CaseError(f"[steps] {name} = {getattr(steps, name)} exceeds {name}_max")
+                raise CaseError(f"[steps] {name} = {getattr(steps, name)} m exceeds {name}_max "
+                                f"= {getattr(steps, f'{name}_max')} m")  # fmt: skip
             if getattr(load, name) < 0:
-                raise CaseError(f"[load] {name} = {getattr(load, name)}: expected a positive "
+                raise CaseError(f"[load] {name} = {getattr(load, name)} m: expected a positive "
                                 "amplitude (the cycle gives the signs), or 0 for none")  # fmt: skip
         if load.control not in ("force", "displacement"):
             raise CaseError(
@@ -306,9 +314,14 @@ def load_deflection_figure(case: Case, result, note: str = "") -> Path:
     fig, ax = plt.subplots(figsize=(6, 4.5))
     P = [0.0] + [s.state.lateral / 1e3 for s in lateral]
     d = [0.0] + [1e3 * s.state.deflection for s in lateral]
-    ax.plot(d, P, "o-", ms=3, label="model")
-    for rule, style in (("cumulative", "--"), ("own_tension", ":")):
-        ax.plot(1e3 * np.r_[0.0, result.reference[rule]], P, style, color="k",
+    ax.plot(d, P, "o-", ms=3, color="tab:blue", label="model", zorder=2)
+    # the two friction rules often nearly coincide: a wide pale band under a thin dashed line
+    # keeps both in sight where they do
+    for rule, style in (("cumulative", {"color": "tab:orange", "lw": 5, "alpha": 0.45,
+                                        "zorder": 1, "solid_capstyle": "round"}),
+                        ("own_tension", {"color": "k", "lw": 1.2, "ls": (0, (4, 2)),
+                                         "zorder": 3})):  # fmt: skip
+        ax.plot(1e3 * np.r_[0.0, result.reference[rule]], P, **style,
                 label=f"beam, stick–slip law ({rule.replace('_', ' ')}, Masing)")  # fmt: skip
     ax.legend(fontsize=8)
     ax.set_xlabel("midspan deflection (mm)")

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import partial
+from typing import ClassVar
 
 import numpy as np
 
@@ -48,6 +49,8 @@ class TensionCycleLoad:
     tension_swing: float = 10e3  # N, amplitude of the end force about [load] tension
     fixed_lateral: float = 0.0  # N, saddle load at midspan held through the cycle; 0: none
 
+    UNITS: ClassVar[dict[str, str]] = {"tension_swing": "N", "fixed_lateral": "N"}
+
 
 @dataclass(frozen=True)
 class TensionCycleSteps:
@@ -55,6 +58,8 @@ class TensionCycleSteps:
 
     tension_swing: float = 1e3  # N, first increment of each leg of the cycle
     tension_swing_max: float = 4e3  # N, largest increment
+
+    UNITS: ClassVar[dict[str, str]] = {"tension_swing": "N", "tension_swing_max": "N"}
 
 
 @dataclass(frozen=True)

@@ -8,13 +8,13 @@ import strand  # noqa: F401
 
 # isort: split
 
-import resource
 import sys
 import time
 
 import numpy as np
 import ufl
 from dolfinx import fem, mesh
+from harness import peak_mib, stamp
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
@@ -23,6 +23,7 @@ from strand.solver import NodalLoad, NonlinearProblem
 
 
 def main(n_cells: int = 10_000) -> None:
+    print(f"stamp: {stamp()}\n")
     # a helical wire of layer 2 of Cardinal, 4 mm cells: n_cells cells
     r, alpha, h = 6.67e-3, np.radians(12.0), 4e-3
     s = np.arange(n_cells + 1) * h * np.cos(alpha)
@@ -57,7 +58,7 @@ def main(n_cells: int = 10_000) -> None:
     its = max(result.iterations, 1)
     tm = problem.timings
     lu = total - tm["residual"] - tm["jacobian"]
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    peak = peak_mib()
     rows = [
         ("cells / unknowns", f"{n_cells} / {V.dofmap.index_map.size_global * 6}"),
         ("JIT residual F (s)", f"{t_F:.2f}"),

@@ -14,9 +14,10 @@ import strand  # noqa: F401
 # isort: split
 
 import io
-import resource
 import sys
 import time
+
+from harness import peak_mib, stamp
 
 from strand.analytical import StickSlipLaw
 from strand.app.case import case_from_dict
@@ -36,6 +37,7 @@ KAPPAS = (0.01, 0.05, 0.1)
 
 
 def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
+    print(f"stamp: {stamp()}\n")
     rows = []
     for name, (key, contact) in VARIANTS.items():
         case = case_from_dict(
@@ -84,7 +86,7 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
     law_row += "".join(f" {float(law.moment(k)):13.2f}" for k in KAPPAS)
     law_row += f" {' '.join(f'{v:6.3f}' for v in law.slip_onset):>34s}"
     print(law_row)
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    peak = peak_mib()
     print(f"peak memory (MiB): {peak:.0f}")
 
 

@@ -11,15 +11,17 @@ import strand  # noqa: F401
 # isort: split
 
 import io
-import resource
 import sys
 import time
+
+from harness import peak_mib, stamp
 
 from strand.app.case import load_case
 from strand.app.run import run_case
 
 
 def main(case_file: str | None = None) -> None:
+    print(f"stamp: {stamp()}\n")
     case = load_case(case_file)
     t0 = time.perf_counter()
     log = io.StringIO()
@@ -30,7 +32,7 @@ def main(case_file: str | None = None) -> None:
     callbacks = tm["residual"] + tm["jacobian"]
     contact = tm["terms"] + tm["insert"]
     lu = tm["solve"] - callbacks
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    peak = peak_mib()
     stages = {}
     for s in result.steps:
         stages.setdefault(s.stage, []).append(s.iterations)

@@ -16,6 +16,7 @@ import sys
 import time
 
 import numpy as np
+from harness import stamp
 
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
@@ -62,6 +63,7 @@ def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
 
 
 def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False) -> None:
+    print(f"stamp: {stamp()}\n")
     geometry = build_geometry(cardinal(), length, 4e-3)
     results = [
         run(geometry, n, not frictionless, p_max) for n in ("neighbour", "director", "frozen")

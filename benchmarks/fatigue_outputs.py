@@ -17,6 +17,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from harness import stamp
+
 from strand.app.fatigue.recorders import PairHistory, WireSectionHistory
 from strand.app.recorders import AxialForceTable, FieldSeries, RunStep, StepContext
 from strand.cable.description import cardinal
@@ -36,6 +38,7 @@ def _size(paths) -> int:
 
 
 def main(steps: int = 10) -> None:
+    print(f"stamp: {stamp()}\n")
     geometry = build_geometry(cardinal(), 1.0, 4e-3)
     problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-2))
     LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3, "tension")

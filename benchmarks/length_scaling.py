@@ -15,12 +15,12 @@ import strand  # noqa: F401
 
 # isort: split
 
-import resource
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from harness import peak_mib, stamp
 
 from strand.app.case import load_case
 from strand.app.run import run_case
@@ -28,6 +28,7 @@ from strand.cable.geometry import build_geometry
 
 
 def main(lengths: list[float], extra: list[str]) -> None:
+    print(f"stamp: {stamp()}\n")
     rows = []
     sink = open("/dev/null", "w")  # noqa: SIM115
     for L in lengths:
@@ -41,7 +42,7 @@ def main(lengths: list[float], extra: list[str]) -> None:
         seconds = time.perf_counter() - t0
         tm = r.timings
         lu = tm["solve"] - tm["residual"] - tm["jacobian"]
-        memory = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        memory = peak_mib()
         g = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
         rows.append((L, r, seconds, lu, memory, 6 * len(g.points)))
     print(f"{'L (m)':>6s} {'unknowns':>9s} {'steps':>6s} {'its':>5s} {'+failed':>7s} "

@@ -19,9 +19,9 @@ import strand  # noqa: F401
 
 import sys
 import time
-from datetime import date
 
 import numpy as np
+from harness import stamp, table
 
 from strand.app.case import load_case
 from strand.cable.geometry import build_geometry
@@ -44,10 +44,11 @@ def main(length: float = 1.0) -> None:
         nearest.append(np.column_stack([st[:, 0], np.where(xi < 0.5, st[:, 1], st[:, 2])]))
     print(
         f"# LU fill of Cardinal's tangent pattern, L = {length:g} m, "
-        f"{6 * len(geometry.points)} unknowns ({date.today()}, benchmarks/lu_fill.py {length:g})\n"
+        f"{6 * len(geometry.points)} unknowns\n\nstamp: {stamp()}\n"
     )
-    print("| same-layer pairs | matrix entries | ordering | LU operations | factor entries | s |")
-    print("|---|---|---|---|---|---|")
+    columns = ["same-layer pairs", "matrix entries", "ordering", "LU operations", "factor entries",
+               "s"]  # fmt: skip
+    print(table([], columns))
     variants = {
         "off": crossings,
         "node to segment (built)": crossings + segments,
@@ -60,20 +61,20 @@ def main(length: float = 1.0) -> None:
             t0 = time.perf_counter()
             flops, factor = pattern_lu(A, ORDERINGS[ordering])
             seconds = time.perf_counter() - t0
-            print(f"| {name} | {entries:.3g} | {ordering.upper()} | {flops:.3g} | {factor:.3g} "
-                  f"| {seconds:.1f} |", flush=True)  # fmt: skip
+            cells = [name, f"{entries:.3g}", ordering.upper(), f"{flops:.3g}", f"{factor:.3g}",
+                     f"{seconds:.1f}"]  # fmt: skip
+            print(table([cells], columns, head=False), flush=True)
         A.destroy()
     pairs = same_layer_pairs(geometry, "packed")
     h = np.linalg.norm(geometry.points[pairs.b1] - geometry.points[pairs.b0], axis=1)
     offset = np.minimum(pairs.weight, 1 - pairs.weight) * h
-    print(
-        "\n| layer | same-layer pairs | element (mm) | facing point to nearest node: median, max (mm) |"
-    )
-    print("|---|---|---|---|")
+    cells = []
     for layer in np.unique(pairs.layer):
         m = pairs.layer == layer
-        print(f"| {layer} | {m.sum()} | {h[m].mean() * 1e3:.2f} | "
-              f"{np.median(offset[m]) * 1e3:.2f}, {offset[m].max() * 1e3:.2f} |")  # fmt: skip
+        cells.append([layer, m.sum(), f"{h[m].mean() * 1e3:.2f}",
+                      f"{np.median(offset[m]) * 1e3:.2f}, {offset[m].max() * 1e3:.2f}"])  # fmt: skip
+    print("\n" + table(cells, ["layer", "same-layer pairs", "element (mm)",
+                               "facing point to nearest node: median, max (mm)"]))  # fmt: skip
     problem.solver.destroy()
 
 

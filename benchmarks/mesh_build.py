@@ -10,6 +10,7 @@ import strand  # noqa: F401
 import sys
 import time
 
+from harness import stamp
 from mpi4py import MPI
 
 from strand.app.case import load_case
@@ -19,6 +20,7 @@ from strand.cable.mesh import beam_space, cable_mesh
 
 
 def main(case_file=None, repeats: int = 5) -> None:
+    print(f"stamp: {stamp()}\n")
     case = load_case(case_file)
     rows = []
     for _ in range(repeats):

@@ -12,9 +12,10 @@ import strand  # noqa: F401
 
 # isort: split
 
-import resource
 import sys
 import time
+
+from harness import peak_mib, stamp
 
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
@@ -24,6 +25,7 @@ from strand.solver import LoadStepper, NewtonOptions
 
 
 def main(normal: str = "director", length: float = 1.0) -> None:
+    print(f"stamp: {stamp()}\n")
     t0 = time.perf_counter()
     geometry = build_geometry(cardinal(), length, 4e-3)
     problem = StrandProblem(
@@ -47,7 +49,7 @@ def main(normal: str = "director", length: float = 1.0) -> None:
     beam = tm["residual"] + tm["jacobian"] - contact
     lu = tm["solve"] - tm["residual"] - tm["jacobian"]
     total = tm["solve"]
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    peak = peak_mib()
     n_pairs = sum(len(g) for g in problem.contact)
     nnz = solver.A.getInfo()["nz_used"]
     print(

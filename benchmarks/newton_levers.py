@@ -24,6 +24,7 @@ import strand  # noqa: F401
 import sys
 import time
 
+from harness import stamp
 from petsc4py import PETSc
 
 from strand.app.build import build_problem
@@ -86,6 +87,7 @@ def run(path: str, name: str) -> None:
 if __name__ == "__main__":
     names = sys.argv[2:] or list(VARIANTS)
     PETSc.Log.begin()
+    print(f"stamp: {stamp()}\n")
     print(
         "| variant | lateral (N) | converged | iterations | LUs | solves | s | residual norms (N) |"
     )

@@ -20,13 +20,13 @@ import strand  # noqa: F401
 
 import csv
 import json
-import resource
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from harness import peak_mib, stamp, table
 from mpi4py import MPI
 
 ROOT = Path("results/benchmark_parallel")
@@ -58,7 +58,7 @@ def worker(folder: str, settings: list[str]) -> None:
     with open("/dev/null", "w") as log:
         result = run_case(case, folder, stream=log, overwrite=True)
     total = time.perf_counter() - t0
-    peaks = comm.gather(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, root=0)
+    peaks = comm.gather(peak_mib(), root=0)
     if comm.rank == 0:
         tm = result.timings
         info = {
@@ -91,6 +91,7 @@ def difference(serial: Path, parallel: Path) -> tuple[float, float]:
 
 
 def main(quick: bool) -> None:
+    print(f"stamp: {stamp()}\n")
     rows = []
     for name, ranks, settings in variants(quick):
         folder = ROOT / name.replace(" ", "_").replace(",", "").replace("+", "")
@@ -102,16 +103,18 @@ def main(quick: bool) -> None:
         info = json.loads((folder / "timings.json").read_text())
         rows.append((name, ranks, folder, info))
     print()
-    print(f"{'variant':36s} {'time (s)':>9s} {'steps':>6s} {'its':>5s} {'cuts':>5s} "
-          f"{'s/it':>6s} {'LU share':>9s}  peak memory per rank (MiB)")  # fmt: skip
+    cells = []
     for name, _, _, info in rows:
         its = max(info["iterations"], 1)
         memory = " / ".join(f"{m:.0f}" for m in info["memory"])
-        print(
-            f"{name:36s} {info['seconds']:9.1f} {info['steps']:6d} {info['iterations']:5d} "
-            f"{info['cuts']:5d} {info['solve'] / its:6.2f} {100 * info['lu'] / info['solve']:8.0f}"
-            f" %  {memory}" + (f"  FAILED: {info['failure']}" if info["failure"] else "")
-        )
+        cells.append([name, f"{info['seconds']:.1f}", info["steps"], info["iterations"],
+                      info["cuts"], f"{info['solve'] / its:.2f}",
+                      f"{100 * info['lu'] / info['solve']:.0f} %", memory])  # fmt: skip
+    print(table(cells, ["variant", "time (s)", "steps", "its", "cuts", "s/it", "LU share",
+                        "peak memory per rank (MiB)"], plain=True))  # fmt: skip
+    for name, _, _, info in rows:
+        if info["failure"]:
+            print(f"{name}: FAILED: {info['failure']}")
     d, f = difference(rows[0][2], rows[1][2])
     print(f"\n2 ranks against 1: deflection and end displacement within {d:.1e} (relative), "
           f"wire axial forces within {f:.1e} (relative to the largest)")  # fmt: skip

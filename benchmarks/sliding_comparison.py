@@ -21,6 +21,8 @@ import sys
 import time
 from pathlib import Path
 
+from harness import stamp
+
 from strand.app.compare import difference_table, overlay_figure
 from strand.cable.description import Cable, cardinal
 from strand.cable.geometry import build_geometry
@@ -64,6 +66,7 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
 
 
 def main(which: str = "helix", p_max: float | None = None, length: float | None = None) -> None:
+    print(f"stamp: {stamp()}\n")
     if which == "helix":
         c = cardinal()
         geometry = build_geometry(

@@ -19,15 +19,13 @@ import strand  # noqa: F401
 
 # isort: split
 
-import json
 import os
-import resource
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from harness import peak_mib, print_result, run_variants, stamp, table
 
 ROOT = Path("results/benchmark_speed")
 QUICK = ["mesh.length=0.15", "load.lateral=1000"]  # a smoke test of the benchmark itself
@@ -70,6 +68,7 @@ def slug(name: str) -> str:
 
 def run_variant(name: str, quick: bool) -> dict:
     """Run one variant in this process; returns its measurements."""
+    from mpi4py import MPI
     from petsc4py import PETSc
 
     from strand.app.case import load_case
@@ -93,7 +92,7 @@ def run_variant(name: str, quick: bool) -> dict:
         "lu_seconds": lu["time"],
         "output_seconds": result.timings["output"],
         "output_by": result.output_timings,
-        "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "peak_mib": peak_mib(MPI.COMM_WORLD),
         "failure": result.failure,
     }
 
@@ -128,27 +127,21 @@ def turning_points(folder: Path) -> dict[int, dict]:
 
 
 def main(names: list[str], quick: bool) -> None:
-    rows = {}
-    for name in names:
-        _, ranks = VARIANTS[name]
-        print(f"running: {name} …", file=sys.stderr, flush=True)
-        mpirun = [str(Path(sys.executable).parent / "mpirun"), "-n", str(ranks)]
-        command = [*(mpirun if ranks > 1 else []), sys.executable, __file__,
-                   *(["--quick"] if quick else []), "--one", name]  # fmt: skip
-        done = subprocess.run(command, capture_output=True, text=True)
-        if done.returncode != 0:
-            print(done.stderr[-2000:], file=sys.stderr)
-            raise SystemExit(f"{name}: failed (exit code {done.returncode})")
-        rows[name] = json.loads(done.stdout.strip().splitlines()[-1])
-    head = (f"{'variant':30s} {'time (s)':>8s} {'steps':>5s} {'its':>5s} {'+failed':>7s} "
-            f"{'LUs':>5s} {'s/LU':>5s} {'s/it':>5s} {'output s':>8s} {'peak MiB':>8s}")  # fmt: skip
-    print(head)
+    print(f"stamp: {stamp()}")
+    rows = run_variants(__file__, names, ["--quick"] if quick else [], lambda n: VARIANTS[n][1])
+    columns = ["variant", "time (s)", "steps", "its", "+failed", "LUs", "s/LU", "s/it",
+               "output s", "peak MiB"]  # fmt: skip
+    cells = []
     for name, r in rows.items():
         its = r["iterations"] + r["failed_iterations"]
-        print(f"{name:30s} {r['seconds']:8.0f} {r['steps']:5d} {r['iterations']:5d} "
-              f"{r['failed_iterations']:7d} {r['lu']:5d} {r['lu_seconds'] / r['lu']:5.2f} "
-              f"{r['seconds'] / its:5.2f} {r['output_seconds']:8.0f} {r['peak_mib']:8.0f}"
-              + (f"  FAILED: {r['failure']}" if r["failure"] else ""))  # fmt: skip
+        cells.append([name, f"{r['seconds']:.0f}", r["steps"], r["iterations"],
+                      r["failed_iterations"], r["lu"], f"{r['lu_seconds'] / max(r['lu'], 1):.2f}",
+                      f"{r['seconds'] / max(its, 1):.2f}", f"{r['output_seconds']:.0f}",
+                      f"{r['peak_mib']:.0f}"])  # fmt: skip
+    print(table(cells, columns, plain=True))
+    for name, r in rows.items():
+        if r["failure"]:
+            print(f"{name}: FAILED: {r['failure']}")
     for name, r in rows.items():
         by = sorted(r["output_by"].items(), key=lambda kv: -kv[1])
         print(f"outputs of '{name}' (s): " + ", ".join(f"{k} {v:.0f}" for k, v in by))
@@ -162,7 +155,7 @@ def compare(names: list[str], reference: str) -> None:
     ref = turning_points(ROOT / slug(reference))
     print(f"\nresults against '{reference}' at the ends of the programme's stages (t = "
           f"{', '.join(str(t) for t in ref)}):")  # fmt: skip
-    print(f"{'variant':30s} {'deflection (µm)':>15s} {'end (µm)':>9s} {'axial force':>12s}")
+    cells = []
     for name in names:
         if name == reference:
             continue
@@ -170,7 +163,8 @@ def compare(names: list[str], reference: str) -> None:
         d = max(abs(other[t]["deflection"] - ref[t]["deflection"]) for t in ref)
         e = max(abs(other[t]["end"] - ref[t]["end"]) for t in ref)
         n = max(np.abs(other[t]["N"] - ref[t]["N"]).max() / np.abs(ref[t]["N"]).max() for t in ref)
-        print(f"{name:30s} {1e6 * d:15.4f} {1e6 * e:9.4f} {n:12.1e}")
+        cells.append([name, f"{1e6 * d:.4f}", f"{1e6 * e:.4f}", f"{n:.1e}"])
+    print(table(cells, ["variant", "deflection (µm)", "end (µm)", "axial force"], plain=True))
 
 
 if __name__ == "__main__":
@@ -187,9 +181,6 @@ if __name__ == "__main__":
     if args[:1] == ["--one"]:
         from mpi4py import MPI
 
-        measured = run_variant(args[1], quick)
-        peaks = MPI.COMM_WORLD.gather(measured["peak_mib"])
-        if MPI.COMM_WORLD.rank == 0:
-            print(json.dumps(dict(measured, peak_mib=max(peaks))))
+        print_result(run_variant(args[1], quick), MPI.COMM_WORLD)
     else:
         main(args or DEFAULT_RUN, quick)

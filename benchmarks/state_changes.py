@@ -23,6 +23,7 @@ import time
 from collections import defaultdict
 
 import numpy as np
+from harness import stamp, table
 from mpi4py import MPI
 from window import WINDOW  # the main job's window (this folder, the script's first path)
 
@@ -129,25 +130,28 @@ def main(settings: list[str], case_file: str | None) -> None:
             for name, n in v.items():
                 total[k][name] += n
     its = iterations[0]
+    print(f"stamp: {stamp()}")
     print(f"{len(result.steps)} steps, {result.iterations} iterations in converged steps, "
           f"{sum(s.failed_iterations for s in result.steps)} in failed attempts, {seconds:.0f} s "
           f"on {comm.size} rank(s); {' '.join(settings)}")  # fmt: skip
-    print(f"{'stage':10s} {'its':>5s} {'interface':9s} {'pairs':>6s} {'open/close':>10s} "
-          f"{'stick/slip':>10s} {'open@end':>8s} {'slip@end':>8s}   (flips per iteration)")  # fmt: skip
     if "--residuals" in sys.argv:
         for stage, converged, residuals in SOLVES:
             print(
                 f"{stage:10s} {'ok  ' if converged else 'FAIL'} "
                 + " ".join(f"{r:.1e}" for r in residuals)
             )
+    cells = []
     for stage in dict.fromkeys(k[0] for k in sorted(total)):
         n = max(its.get(stage, 0), 1)
         for (s, name), v in sorted(total.items()):
             if s != stage:
                 continue
-            print(f"{stage:10s} {its.get(stage, 0):5d} {name:9s} {v['pairs']:6.0f} "
-                  f"{v['open/close'] / n:10.1f} {v['stick/slip'] / n:10.1f} "
-                  f"{v['open at end']:8.0f} {v['slipping at end']:8.0f}")  # fmt: skip
+            cells.append([stage, its.get(stage, 0), name, f"{v['pairs']:.0f}",
+                          f"{v['open/close'] / n:.1f}", f"{v['stick/slip'] / n:.1f}",
+                          f"{v['open at end']:.0f}", f"{v['slipping at end']:.0f}"])  # fmt: skip
+    print("flips per iteration (open/close, stick/slip) per stage and interface:")
+    print(table(cells, ["stage", "its", "interface", "pairs", "open/close", "stick/slip",
+                        "open@end", "slip@end"], plain=True))  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ import sys
 import time
 
 import numpy as np
+from harness import stamp
 
 from strand.app.build import build_problem
 from strand.app.case import load_case
@@ -59,6 +60,7 @@ def state(problem) -> dict:
 
 def main(settings: list[str]) -> None:
     serial_only("benchmarks/stencils.py")
+    print(f"stamp: {stamp()}\n")
     runs = {}
     for h in (1.0, 0.5):
         for stencil in VARIANTS:

@@ -12,8 +12,8 @@ step's M/κ over EI_max, the zone moment M at each curvature beside the stick–
 pressure), the slip onset per interface (the first of those κ at which 10 % of the interface's pairs
 in the measuring zone slip; ">" none by 0.5), the share of same-layer pairs closed at the first
 step, and the cost (wall time and Newton iterations, failed ones included). Loop areas need a full
-cycle and are not measured here (the bending case's summary gives them). Prints the machine,
-commit and command first; a variant that stops prints why.
+cycle and are not measured here (the bending case's summary gives them). Prints the stamp (date,
+commit, cores, command) first; a variant that stops prints why.
 """
 
 import strand  # noqa: F401
@@ -21,14 +21,11 @@ import strand  # noqa: F401
 # isort: split
 
 import argparse
-import platform
-import subprocess
-import sys
 import time
 from functools import partial
-from pathlib import Path
 
 import numpy as np
+from harness import stamp, table
 
 from strand.analytical import StickSlipLaw, stick_bending_estimate
 from strand.cable.description import Cable, cardinal
@@ -91,7 +88,7 @@ def onset(shares: list[list[float]]) -> str:
     return "/".join(out) or "–"
 
 
-def row(name: str, same_layer: str, slip: str, length: float | None) -> str:
+def row(name: str, same_layer: str, slip: str, length: float | None) -> list[str]:
     cable, default_length, tension = strands()[name]
     length = length or default_length
     _, ei_max = bending_stiffness_bounds(cable)
@@ -114,19 +111,8 @@ def row(name: str, same_layer: str, slip: str, length: float | None) -> str:
         outcome = f" stopped: {str(e)[:90]}"
     cells += ["–"] * (len(KAPPAS) - len(cells))
     seconds = time.perf_counter() - t0
-    return (f"| {cable.name}, {length:g} m, {tension / 1e3:g} kN | {slip} | {same_layer} | {estimate:.3f} | "
-            f"{slope or '–'} | " + " | ".join(cells) + f" | {onset(shares)} | {closed} | {seconds:.0f} s, {effort} its"
-            f"{outcome} |")  # fmt: skip
-
-
-def stamp() -> str:
-    root = Path(__file__).parents[1]
-    commit = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()  # fmt: skip
-    return (
-        f"{time.strftime('%Y-%m-%d')}, commit {commit}, {platform.node()} "
-        f"({platform.processor() or platform.machine()}), python {' '.join(sys.argv)}"
-    )
+    return [f"{cable.name}, {length:g} m, {tension / 1e3:g} kN", slip, same_layer, f"{estimate:.3f}",
+            slope or "–", *cells, onset(shares), closed, f"{seconds:.0f} s, {effort} its{outcome}"]  # fmt: skip
 
 
 def main() -> None:
@@ -139,12 +125,13 @@ def main() -> None:
     print(stamp())
     head = ["strand", "slip", "same layer", "estimate", "M/κ / EI_max",
             *(f"M at {k:g} (law)" for k in KAPPAS), "slip onset κ", "closed", "cost"]  # fmt: skip
-    print("| " + " | ".join(head) + " |")
-    print("|" + "---|" * len(head))
+    print(table([], head))
     for name in args.strand:
         for slip in args.slip:
             for same_layer in args.same_layer:
-                print(row(name, same_layer, slip, args.length), flush=True)
+                print(
+                    table([row(name, same_layer, slip, args.length)], head, head=False), flush=True
+                )
 
 
 if __name__ == "__main__":

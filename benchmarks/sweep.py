@@ -18,6 +18,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from harness import stamp
 
 from strand.app.case import load_case
 from strand.app.run import run_case, run_sweep
@@ -26,6 +27,7 @@ ROOT = Path("results/benchmark_sweep")
 
 
 def main(length: float = 0.25, n: int = 10) -> None:
+    print(f"stamp: {stamp()}\n")
     amplitudes = [round(1000.0 * (k + 1) / n, 6) for k in range(n)]
     settings = [f"mesh.length={length}", "output.plots=false"]
     sink = open("/dev/null", "w")  # noqa: SIM115

@@ -20,9 +20,7 @@ import strand  # noqa: F401  (before petsc4py: the wheel's MPI; a variant's own 
 
 # isort: split
 
-import json
 import os
-import resource
 import subprocess
 import sys
 import time
@@ -30,6 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from harness import peak_mib, print_result, run_variants, stamp, table
 
 ROOT = Path("results/benchmark_window")
 #: the window: tension and the first leg; no field series, checkpoints, figures or histories
@@ -146,7 +145,7 @@ def run_variant(name: str, quick: bool) -> dict:
     seconds = time.perf_counter() - t0
     problem.solver.destroy()
     lu = PETSc.Log.Event("MatLUFactorNum").getPerfInfo()
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    peak = peak_mib(comm)
     if comm.rank == 0:
         ROOT.mkdir(parents=True, exist_ok=True)
         np.savez(ROOT / f"{slug(name)}.npz",
@@ -158,7 +157,7 @@ def run_variant(name: str, quick: bool) -> dict:
         "failed_iterations": sum(r.failed_iterations for r in steps),
         "lu": lu["count"],
         "lu_seconds": lu["time"],
-        "peak_mib": comm.allreduce(peak, op=MPI.MAX),
+        "peak_mib": peak,
         "failure": failure,
     }
 
@@ -187,45 +186,34 @@ def differences(name: str, reference: str) -> dict[str, float]:
     return out
 
 
-def stamp() -> str:
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()  # fmt: skip
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True).stdout.strip()  # fmt: skip
-    return (f"{time.strftime('%Y-%m-%d %H:%M')}, this tree at {commit}{' (modified)' if dirty else ''}"
-            f", {os.cpu_count()} cores, `python benchmarks/window.py {' '.join(sys.argv[1:])}`")  # fmt: skip
-
-
 def main(names: list[str], quick: bool, ranks: int) -> None:
-    rows = {}
     print(f"stamp: {stamp()}")
-    for name in names:
-        variant = VARIANTS[name]
-        print(f"running: {name} …", file=sys.stderr, flush=True)
-        env = dict(os.environ)
-        if variant.commit is not None:
-            env["PYTHONPATH"] = f"{worktree(variant.commit)}:{env.get('PYTHONPATH', '')}"
-        mpirun = [str(Path(sys.executable).parent / "mpirun"), "-n", str(ranks)]
-        command = [*mpirun, sys.executable, __file__, *(["--quick"] if quick else []), "--one",
-                   name]  # fmt: skip
-        done = subprocess.run(command, capture_output=True, text=True, env=env)
-        if done.returncode != 0:
-            print(done.stderr[-3000:], file=sys.stderr)
-            raise SystemExit(f"{name}: failed (exit code {done.returncode})")
-        rows[name] = json.loads(done.stdout.strip().splitlines()[-1])
+
+    def env(name: str) -> dict[str, str] | None:
+        commit = VARIANTS[name].commit
+        if commit is None:
+            return None
+        return dict(os.environ, PYTHONPATH=f"{worktree(commit)}:{os.environ.get('PYTHONPATH', '')}")
+
+    rows = run_variants(__file__, names, ["--quick"] if quick else [], ranks, env)
     first = rows[names[0]]["seconds"]
-    print(f"\n{'variant':34s} {'time (s)':>8s} {'/first':>6s} {'steps':>5s} {'its':>5s} "
-          f"{'+failed':>7s} {'LUs':>5s} {'s/LU':>5s} {'s/it':>5s} {'peak MiB':>8s}")  # fmt: skip
+    columns = ["variant", "time (s)", "/first", "steps", "its", "+failed", "LUs", "s/LU", "s/it",
+               "peak MiB"]  # fmt: skip
+    cells = []
     for name, r in rows.items():
         its = r["iterations"] + r["failed_iterations"]
-        print(f"{name:34s} {r['seconds']:8.0f} {r['seconds'] / first:6.2f} {r['steps']:5d} "
-              f"{r['iterations']:5d} {r['failed_iterations']:7d} {r['lu']:5d} "
-              f"{r['lu_seconds'] / max(r['lu'], 1):5.2f} {r['seconds'] / max(its, 1):5.2f} "
-              f"{r['peak_mib']:8.0f}" + (f"  FAILED: {r['failure']}" if r["failure"] else ""))  # fmt: skip
+        cells.append([name, f"{r['seconds']:.0f}", f"{r['seconds'] / first:.2f}", r["steps"],
+                      r["iterations"], r["failed_iterations"], r["lu"],
+                      f"{r['lu_seconds'] / max(r['lu'], 1):.2f}", f"{r['seconds'] / max(its, 1):.2f}",
+                      f"{r['peak_mib']:.0f}"])  # fmt: skip
+    print("\n" + table(cells, columns, plain=True))
+    for name, r in rows.items():
+        if r["failure"]:
+            print(f"{name}: FAILED: {r['failure']}")
     print("\nat the end of the tension and at the peak, the largest differences: deflection and "
           "end displacement (µm), element axial forces, contact pair and same-layer pair forces "
           "(each against the largest)")  # fmt: skip
-    print(f"{'':56s} {'deflection':>10s} {'end':>8s} {'axial':>8s} {'pairs':>8s} {'same':>8s}")
+    cells = []
     for name in rows:
         compared = [(f"{name} against its steps halved", f"{name}, steps halved")]
         if name != names[0] and not name.endswith("steps halved"):
@@ -233,8 +221,10 @@ def main(names: list[str], quick: bool, ranks: int) -> None:
         for label, reference in compared:
             if reference in rows:
                 d = differences(name, reference)
-                print(f"{label:56s} {d['deflection']:10.3f} {d['end']:8.3f} {d['N']:8.1e} "
-                      f"{d['pairs']:8.1e} {d['same']:8.1e}")  # fmt: skip
+                cells.append([label, f"{d['deflection']:.3f}", f"{d['end']:.3f}", f"{d['N']:.1e}",
+                              f"{d['pairs']:.1e}", f"{d['same']:.1e}"])  # fmt: skip
+    if cells:
+        print(table(cells, ["", "deflection", "end", "axial", "pairs", "same"], plain=True))
 
 
 if __name__ == "__main__":
@@ -249,8 +239,7 @@ if __name__ == "__main__":
         measured = run_variant(args[1], quick)
         from mpi4py import MPI
 
-        if MPI.COMM_WORLD.rank == 0:
-            print(json.dumps(measured))
+        print_result(measured, MPI.COMM_WORLD)
     else:
         unknown = [a for a in args if a not in VARIANTS]
         if unknown:

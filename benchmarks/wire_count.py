@@ -58,14 +58,13 @@ import strand  # noqa: F401
 import argparse
 import json
 import math
-import platform
-import resource
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from harness import peak_mib, stamp, table
 
 #: the runs' folders and logs (``quick/`` under it for ``--quick``)
 ROOT = Path("results/benchmark_wire_count")
@@ -192,7 +191,7 @@ def worker(wires: int, length: float, folder: Path, settings: list[str]) -> None
         problem.solver.destroy()
     lu = PETSc.Log.Event("MatLUFactorNum").getPerfInfo()
     analysis = PETSc.Log.Event("MatLUFactorSym").getPerfInfo()
-    peak = comm.allreduce(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, op=MPI.MAX)
+    peak = peak_mib(comm)
     if comm.rank == 0:
         c = case.contact
         measured = {
@@ -313,14 +312,6 @@ def run(root: Path, wires: int, ranks: int, length: float, settings: list[str]) 
     return r
 
 
-def stamp(command: list[str]) -> str:
-    root = Path(__file__).parents[1]
-    commit = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()  # fmt: skip
-    return (f"{time.strftime('%Y-%m-%d')}, commit {commit}, {platform.node()} "
-            f"({platform.processor() or platform.machine()}), {' '.join(command)}")  # fmt: skip
-
-
 def _g(value: float, digits: int = 3) -> str:
     return "–" if value is None or not math.isfinite(value) else f"{value:.{digits}g}"
 
@@ -330,16 +321,16 @@ def per_iteration(r: dict) -> float:
     return r["solve_seconds"] / max(r["iterations"] + r["failed_iterations"], 1)
 
 
-def table(rows: list[dict]) -> list[str]:
+def run_table(rows: list[dict]) -> str:
     """The runs as a markdown table."""
     head = ["wires", "ranks", "unknowns", "pairs", "T (kN)", "P (kN)", "steps", "its (+failed)",
             "LUs", "wall (s)", "s/it", "s/LU", "analysis (s)", "outputs (s)", "LU flops",
             "factor entries", "factor MB", "peak MiB"]  # fmt: skip
-    lines = ["| " + " | ".join(head) + " |", "|" + "---:|" * len(head)]
+    lines = []
     for r in rows:
         if "steps" not in r:
             cells = [str(r["wires"]), str(r["ranks"]), *["–"] * 7, _g(r["seconds"])]
-            lines.append("| " + " | ".join(cells + ["–"] * (len(head) - len(cells))) + " |")
+            lines.append(cells + ["–"] * (len(head) - len(cells)))
             continue
         cells = [
             str(r["wires"]), str(r["ranks"]), str(r["unknowns"]), str(r["pairs"]),
@@ -350,8 +341,8 @@ def table(rows: list[dict]) -> list[str]:
             f"{r['output_seconds']:.1f}", _g(r["flops"]), _g(r["entries"]),
             _g(r["factor_mb"], 4), f"{r['peak_mib']:.0f}",
         ]  # fmt: skip
-        lines.append("| " + " | ".join(cells) + " |")
-    return lines
+        lines.append(cells)
+    return table(lines, head)
 
 
 #: the fitted quantities: name: value of a run
@@ -384,14 +375,14 @@ def probe_lines(probe: dict) -> list[str]:
     head = ["MUMPS analysis", "analysis (s)", "factorisation (s)", "INFOG(32)", "ordering",
             "LU flops", "factor entries", "factor MB", "residual", "error"]  # fmt: skip
     lines = [f"\nMUMPS's analysis on {probe['ranks']} ranks, {probe['wires']} wires, the Jacobian "
-             f"after the first tension step (converged: {probe['first_step']}):", "",
-             "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]  # fmt: skip
+             f"after the first tension step (converged: {probe['first_step']}):", ""]  # fmt: skip
+    rows = []
     for name, r in probe["rows"].items():
         cells = [name, f"{r['analysis_s']:.3f}", f"{r['factor_s']:.3f}", str(r["analysis"]),
                  r["ordering"], _g(r["flops"]), _g(r["entries"]), _g(r["factor_mb"], 4),
                  _g(r.get("residual", math.nan), 2), r.get("error", "")]  # fmt: skip
-        lines.append("| " + " | ".join(cells) + " |")
-    return lines
+        rows.append(cells)
+    return [*lines, table(rows, head)]
 
 
 def main(args: argparse.Namespace, settings: list[str]) -> None:
@@ -419,7 +410,7 @@ def main(args: argparse.Namespace, settings: list[str]) -> None:
         launch(["--probe", str(max(sizes)), str(length), str(out), *settings], 2,
                root / "analysis.log")  # fmt: skip
         probe = json.loads(out.read_text()) if out.exists() else None
-    print(f"\nWire count: {stamp([Path(sys.executable).name, *sys.argv])}")
+    print(f"\nWire count: {stamp()}")
     contact = next((r["contact"] for r in rows if "contact" in r), "–")
     orderings = sorted({r["ordering"] for r in rows if "ordering" in r})
     print(f"steel spiral strands of {WIRE_DIAMETER * 1e3:g} mm wires, {LAY_ANGLE:g}° lay, "
@@ -427,7 +418,7 @@ def main(args: argparse.Namespace, settings: list[str]) -> None:
           f"{LATERAL_SHARE:g} T up and back; contact: {contact}; MUMPS ordering: "
           f"{', '.join(orderings) or '–'}"
           + (f"; settings: {' '.join(settings)}" if settings else "") + "\n")  # fmt: skip
-    print("\n".join(table(rows)))
+    print(run_table(rows))
     for r in rows:
         if r["failure"]:
             print(f"{r['wires']} wires, {r['ranks']} ranks: FAILED: {r['failure']}")

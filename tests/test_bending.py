@@ -1,4 +1,4 @@
-"""Uniform bending under tension (issue 11): the set-up's equilibrium, the stick limit, and the
+"""Uniform bending under tension: the set-up's equilibrium, the stick limit, and the
 analytical stick–slip references it is compared with."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Cheaper iterations than Newton's (``[steps] iteration``, issue 32): GMRES on each Jacobian
+"""Cheaper iterations than Newton's (``[steps] iteration``): GMRES on each Jacobian
 preconditioned by an earlier LU (``reuse_lu``) and L-BFGS on each solve's first LU (``lbfgs``).
 On the quick 1+6 strand, tensioned, the same lateral step from the same state: each reaches
 Newton's solution; ``reuse_lu`` factorises fewer times than it iterates, over several steps too;

@@ -1,4 +1,4 @@
-"""The built-in all-steel spiral strand ``judge120`` (issue 29, item 7): the 120-wire strand of
+"""The built-in all-steel spiral strand ``judge120``: the 120-wire strand of
 Judge et al. (2012), Construction and Building Materials 35, 452–459, as transcribed by RTE's
 pallas-stranded-cable (strand/cable/data/judge120.toml names both). The numbers below are typed from
 that transcription, not read from the data file: the data file is checked against them, its stated

@@ -1,4 +1,4 @@
-"""Residual-only evaluations of the pair terms (issue 32): the residual callback evaluates the
+"""Residual-only evaluations of the pair terms: the residual callback evaluates the
 contact residual without its tangent, the Jacobian callback adds the tangent; the residual and
 every Newton iterate are those of full evaluations, bit for bit, on the quick 1+6 strand with
 prescribed end motions (uniform bending) and with fixed supports (the saddle test)."""

@@ -1,4 +1,4 @@
-"""Displacement-controlled saddle cycles (``[load] control = "displacement"``, issue 29 item 3):
+"""Displacement-controlled saddle cycles (``[load] control = "displacement"``):
 the midspan deflection or the conductor practice's Y_b is prescribed, every step finds the saddle
 load that gives it (``strand.solver.displacement_control``). The prescribed displacement is
 reached to the stated tolerance, the force-controlled test at the loads found gives the same

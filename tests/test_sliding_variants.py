@@ -1,4 +1,4 @@
-"""Large sliding with the centre-line slip and with same-layer contact (issue 30, items 2 and 3):
+"""Large sliding with the centre-line slip and with same-layer contact:
 exact tangents, spin-blindness, agreement with the small-sliding element, and the same answer on
 1 and 2 ranks (same-layer pairs opening and closing in both models: tests/test_same_layer.py)."""
 

@@ -1,4 +1,4 @@
-"""Load spectra (issue 29, item 3): a load history reduced by rainflow to cycle counts per
+"""Load spectra: a load history reduced by rainflow to cycle counts per
 amplitude (``strand spectrum``, ``strand.fatigue.spectrum.reduce_history``), Miner's sum over a
 spectrum, and a ``[fatigue] spectrum`` case whose damage is the sum of its members' runs."""
 

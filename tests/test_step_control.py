@@ -1,5 +1,5 @@
 """Load steps sized by an error estimate (``ErrorControl``), and the retry of a failed attempt
-with the predictor switched (issue 32): on a stand-in solver whose solution path u(λ) is known,
+with the predictor switched: on a stand-in solver whose solution path u(λ) is known,
 so that the secant predictor's miss is computed by hand; then on the quick 1+6 strand."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Tension alone (issue 11): a 1+6 strand with ends held against rotation against Costello's thin-rod
+"""Tension alone: a 1+6 strand with ends held against rotation against Costello's thin-rod
 theory (docs/theory.md §5.2), which assumes rigid contacts: axial strain and end torque."""
 
 from __future__ import annotations

@@ -1,8 +1,8 @@
-"""A cycle of the tension as a load programme (``[load] kind = "tension_cycle"``, issue 29 item
-3): the end force the run records swings over the range asked, the wires' stress ranges follow the
+"""A cycle of the tension as a load programme (``[load] kind = "tension_cycle"``): the end
+force the run records swings over the range asked, the wires' stress ranges follow the
 fibre model, and the fatigue report's strand-level T–N damage is DNV-OS-E301's closed form for
-that range; alone or with a saddle load held at midspan. And the built-in all-steel mooring strand
-(issue 29 item 7)."""
+that range; alone or with a saddle load held at midspan; bad settings refused; and the example
+case file read as its comments say."""
 
 from __future__ import annotations
 

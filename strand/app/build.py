@@ -144,8 +144,8 @@ def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme
     if not case.contact.friction and case.contact.normal == "frozen":
         print(
             "frictionless: contact normals frozen at t = 0 (geometry-following normals do not "
-            "converge without friction); gaps are approximate in bending (up to ~50 µm on "
-            "Cardinal at 4.3 kN), so pair forces are indicative only",
+            "converge without friction); gaps are approximate in bending (docs/benchmarks.md, "
+            "Contact normals), so pair forces are indicative only",
             file=stream,
             flush=True,
         )

@@ -32,7 +32,8 @@ class ContactSettings:
             max error 3.7 vs 3.4 µm); "director" keeps 2-node stencils, so its LU is 1.6× cheaper.
             A frictionless strand has near-zero-energy modes (wires rolling around the layer
             below) that only the frozen normal's spurious stiffness holds; its gaps are then only
-            approximate in bending (up to 11 µm). See ``strand.contact.kinematics``.
+            approximate in bending (by how much: docs/benchmarks.md, "Contact normals"). See
+            ``strand.contact.kinematics``.
         compliance: "hertz" (default: contact mechanics from the wires' radii and moduli and the
             current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
             contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;

@@ -3,7 +3,7 @@
 It imports nothing but ``CaseError``, so that what sits below the kinds can read it: the settings
 take every registered kind's own settings from ``registered`` (importing this module loads the
 package ``strand.app.kinds`` first, which registers the built-in kinds). ``register``
-(``strand.app.kinds.base``) checks a kind against the settings before it ``add``s it here."""
+(``strand.app.kinds.base``) checks a kind against the settings before it adds it here (``add``)."""
 
 from __future__ import annotations
 

@@ -217,21 +217,14 @@ def test_owned_rows_refuses_a_stencil_missing_on_its_anchors_rank():
 
 
 ROOT = Path(__file__).parents[1]
-SERIAL_ONLY = [
-    *sorted(
-        p
-        for p in (ROOT / "demos").glob("demo_*.py")
-        if p.stem not in ("demo_strand_bending", "demo_crossed_beams")  # these run on N ranks
-    ),
-    ROOT / "benchmarks" / "mesh_build.py",
-]
+SERIAL_ONLY = [ROOT / "benchmarks" / "mesh_build.py"]  # the demos run on N ranks: test_demos.py
 
 
 @needs_mpirun
 @pytest.mark.parametrize("script", SERIAL_ONLY, ids=[p.stem for p in SERIAL_ONLY])
 def test_serial_scripts_refuse_mpirun_in_one_line(script, tmp_path):
-    """Demos that index nodes locally and the benchmarks (which compare variants in one process)
-    stop before computing, with one line and exit code 2, instead of hanging."""
+    """The benchmarks (which compare variants in one process) stop before computing, with one
+    line and exit code 2, instead of hanging."""
     done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
                           capture_output=True, text=True, timeout=120)  # fmt: skip
     lines = [line for line in done.stderr.splitlines() if line.strip()]

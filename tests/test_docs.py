@@ -134,6 +134,20 @@ def test_the_recorded_results_are_those_of_the_demos_as_they_are():
         assert demo_page(demo)[1] == [], demo.stem
 
 
+def test_the_outputs_reference_shows_every_figure_a_run_draws(built):
+    """Each figure a run draws, the quick case's, beside its description."""
+    from strand.app.run_files import OUTPUTS
+
+    figures = {name for name in OUTPUTS if name.endswith(".png")}
+    page = built / "outputs.html"
+    assert figures <= {i.name for i in _images(page)}
+    for name in figures:  # under it, a caption that names it and says what it shows
+        caption = rf'src="_images/{name}" />\s*<figcaption>\s*<p><span class="caption-text"><code'
+        assert re.search(
+            caption + rf'[^>]*><span class="pre">{name}</span></code> \(', page.read_text()
+        ), name
+
+
 def test_the_figures_are_small():
     large = [str(p) for p in DOCS.glob("_static/**/*.png") if p.stat().st_size > 120_000]
     assert large == []

@@ -151,7 +151,7 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     P = result.peak_step.load
     plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
-        f"midspan, at P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
+        f"midspan,\nat P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
         + (f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"),
         position="upper_edge", font_size=10,
     )  # fmt: skip

@@ -148,6 +148,19 @@ def test_the_outputs_reference_shows_every_figure_a_run_draws(built):
         ), name
 
 
+def test_the_gallery_shows_every_figure_with_a_link_to_its_page(built):
+    """The gallery shows every figure the docs hold, each linked to its tutorial or to its
+    description in the outputs reference."""
+    recorded = {p.name for p in (DOCS / "_static").glob("*/**/*.png")}
+    gallery = built / "gallery.html"
+    assert recorded <= {i.name for i in _images(gallery)}
+    links = re.findall(r'href="([^"]+)"', gallery.read_text())
+    for demo in sorted((ROOT / "demos").glob("demo_*.py")):
+        assert f"_generated/tutorials/{demo.stem}.html" in links, demo.stem
+    for name in sorted(p.stem for p in (DOCS / "_static" / "outputs").glob("*.png")):
+        assert f"outputs.html#{name.replace('_', '-')}-png" in links, name
+
+
 def test_the_figures_are_small():
     large = [str(p) for p in DOCS.glob("_static/**/*.png") if p.stat().st_size > 120_000]
     assert large == []

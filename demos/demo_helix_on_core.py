@@ -30,6 +30,9 @@
 # $g = (x_b - x_a)\cdot n - r_a - r_b$, and it stands for a tributary length $\ell$ of the contact
 # line, with a penalty $p = k\,\ell\langle -g\rangle$. Friction is elastic up to the cone, with a
 # radial return (see the crossed-beams demo). Units: SI.
+#
+# The script runs on any number of processes (`mpirun -n 2 python demo_helix_on_core.py`) with
+# the same result: process 0 prints and draws.
 
 # +
 import strand  # noqa: F401  (loads the dolfinx wheel's MPI library first)
@@ -51,13 +54,15 @@ from strand import (
     NonlinearProblem,
     beam_space,
     candidate_pairs,
+    candidate_stencils,
     contact_terms,
+    dof_values,
     locate_nodes,
     polyline_mesh,
-    serial_only,
+    slab_partitioner,
 )
 
-serial_only("this demo")  # it reads nodes by their local index: one process
+comm = MPI.COMM_WORLD
 
 # -
 
@@ -67,6 +72,11 @@ serial_only("this demo")  # it reads nodes by their local index: one process
 # cell's own frame); the core has a node at the height of every helix node. The closed forms
 # neglect the wire's own bending and twisting moments (Love's terms, of relative size
 # ~(d sinα cosα/r)²); a helix of radius four times the wire's keeps them near 1e-3.
+#
+# On several processes a pair is evaluated by the process owning its core node, which must also
+# hold its wire node and their neighbours: `candidate_stencils` finds the pairs on the input
+# arrays (`reach` and `line` as `candidate_pairs` below), and `slab_partitioner` cuts the mesh
+# into slabs along the axis, core and wire together, with each pair's nodes whole on one process.
 
 r_w = 1.5e-3  # wire and core radius (m)
 r_c = 3 * r_w  # core radius (m)
@@ -77,8 +87,13 @@ z = np.linspace(0.0, S * np.cos(alpha), n + 1)
 phi = (z - z[-1]) * np.tan(alpha) / r  # B, the end at z[-1], at φ = 0
 x_core = np.c_[0 * z, 0 * z, z]
 x_wire = np.c_[r * np.cos(phi), r * np.sin(phi), z]
+points = np.vstack([x_core, x_wire])
 cells = np.vstack([np.c_[0:n, 1 : n + 1], np.c_[0:n, 1 : n + 1] + n + 1])
-V = beam_space(polyline_mesh(MPI.COMM_WORLD, np.vstack([x_core, x_wire]), cells))
+reach = 1e-6  # the largest initial gap of a pair (m): the wire lies on the core
+stencils = candidate_stencils(points, cells, range(n + 1), range(n + 1, 2 * n + 2), r_c, r_w,
+                              reach, line=True)  # fmt: skip
+partitioner = slab_partitioner(points[:, 2], cells, [stencils])
+V = beam_space(polyline_mesh(comm, points, cells, partitioner))
 core, wire = locate_nodes(V, x_core), locate_nodes(V, x_wire)
 w = fem.Function(V)
 E, A = 200e9, np.pi * r_w**2
@@ -99,7 +114,7 @@ kappa = np.sin(alpha) ** 2 / r
 # `locate_dofs_topological` on a component `V.sub(c)` that component's dofs at given vertices.
 
 k_line, mu, g_lim = 5e9, 0.3, 1e-7  # N/m², -, m
-pairs = candidate_pairs(V, core, wire, r_c, r_w, reach=1e-6, line=True)
+pairs = candidate_pairs(V, core, wire, r_c, r_w, reach, line=True)
 contact = contact_terms(pairs, LinePenaltyLaw(k_line))
 
 
@@ -129,32 +144,45 @@ T0, TB = 1000.0, 1800.0  # N
 delta0 = T0 * S / (E * A)  # the wire's stretch at T0
 stepper.ramp(set_slide, 0.0, delta0)
 
-# The wire's tension is its axial force $N$ (in the cell frame), one value per cell:
+# The wire's tension is its axial force $N$ (in the cell frame), one value per cell: a DG0
+# function, whose dofs sit at the cells' midpoints. `dof_values` reads it there, from A to B, on
+# every process (each cell's value where the cell is owned).
 
 DG0 = fem.functionspace(V.mesh, ("DG", 0))
 N = fem.Function(DG0)
-mid = V.mesh.geometry.x[V.mesh.geometry.dofmaps[0]].mean(axis=1)  # cell midpoints
-on_wire = np.flatnonzero(np.hypot(mid[:, 0], mid[:, 1]) > r / 2)
-on_wire = on_wire[np.argsort(mid[on_wire, 2])]
-s_cell = mid[on_wire, 2] / np.cos(alpha)  # arc length from A
+mid = 0.5 * (x_wire[:-1] + x_wire[1:])  # the wire's cells' midpoints
+s_cell = mid[:, 2] / np.cos(alpha)  # arc length from A
 
 
 def tension() -> np.ndarray:
     N.interpolate(fem.Expression(beam.N[0], DG0.element.interpolation_points))
-    return N.x.array[on_wire].copy()
+    return dof_values(N, mid)[:, 0]
 
 
 # ## The line load at $T_0$
 #
-# Each pair's force over its tributary length, away from the clamp and the pulled end:
+# Each pair's force over its tributary length, away from the clamp and the pulled end. Each
+# process holds the pairs it evaluates: their values are put in the pairs' global order
+# (`pairs.index`) and summed over the processes.
+
+n_pairs = comm.allreduce(len(pairs.index))
+
+
+def in_order(values) -> np.ndarray:
+    """Per-pair ``values`` of every process's pairs, in the pairs' global order, everywhere."""
+    out = np.zeros(n_pairs)
+    out[pairs.index] = values
+    return comm.allreduce(out)
+
 
 T0 = tension()[(s_cell > 0.05) & (s_cell < S - 0.05)].mean()
-s_pairs = np.searchsorted(wire, pairs.b) * h  # arc length of each pair's wire node
+s_pairs = in_order(pairs.positions[:, 1, 2]) / np.cos(alpha)  # arc length of each wire node
 inner = (s_pairs > 0.05) & (s_pairs < S - 0.05)
-q = contact.state.force / pairs.tributary
+q = in_order(contact.state.force / pairs.tributary)
 q_error = np.max(np.abs(q[inner] / (T0 * kappa) - 1))
-print(f"tension T0 = {T0:.2f} N; line load {q[inner].mean():.1f} N/m against T0 sin²α/r = "
-      f"{T0 * kappa:.1f} N/m (largest relative difference {q_error:.1e})")  # fmt: skip
+if comm.rank == 0:
+    print(f"tension T0 = {T0:.2f} N; line load {q[inner].mean():.1f} N/m against T0 sin²α/r = "
+          f"{T0 * kappa:.1f} N/m (largest relative difference {q_error:.1e})")  # fmt: skip
 assert q_error < 5e-3
 q_T0 = q.copy()
 
@@ -176,29 +204,37 @@ front = S - np.log(TB / T0) / (mu * kappa)
 T_exact = np.maximum(T0, TB * np.exp(-mu * kappa * (S - s_cell)))
 away = np.abs(s_cell - front) > 0.01  # the elastic slip rounds the front over a few cells
 T_error = np.max(np.abs(T_cell[away] - T_exact[away])) / TB
-print(f"T_B = {TB:.1f} N (aim {aim:.1f} N); slip front at s = {front * 1e3:.1f} mm; "
-      f"largest |T − T_capstan| / T_B = {T_error:.1e}")  # fmt: skip
+if comm.rank == 0:
+    print(f"T_B = {TB:.1f} N (aim {aim:.1f} N); slip front at s = {front * 1e3:.1f} mm; "
+          f"largest |T − T_capstan| / T_B = {T_error:.1e}")  # fmt: skip
 assert T_error < 1e-2
 
 # ## Pictures
+#
+# Drawn by process 0: every process holds the line loads and tensions above.
 
-out = Path("results/demo_helix_on_core")
-out.mkdir(parents=True, exist_ok=True)
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8))
-ax1.plot(1e3 * s_pairs, q_T0 / 1e3, "o", ms=2, label="strand (pair force / ℓ)")
-ax1.axhline(T0 * kappa / 1e3, color="k", lw=1, label=r"$T_0 \sin^2\alpha / r$")
-ax1.set(
-    xlabel="arc length s (mm)", ylabel="line load q (kN/m)", title=r"frictionless, tension $T_0$"
-)
-ax2.plot(1e3 * s_cell, T_cell / 1e3, "o", ms=2, label="strand (axial force)")
-ax2.plot(1e3 * s_cell, T_exact / 1e3, "k-", lw=1, label=r"capstan: $T_B\,e^{-\mu\kappa(S-s)}$")
-ax2.axvline(1e3 * front, color="grey", ls=":", label="slip front")
-ax2.set(
-    xlabel="arc length s (mm)", ylabel="wire tension T (kN)", title=r"with friction, B slid further"
-)
-for ax in (ax1, ax2):
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
-fig.tight_layout()
-fig.savefig(out / "helix_on_core.png", dpi=120)
-print("picture:", out / "helix_on_core.png")
+if comm.rank == 0:
+    out = Path("results/demo_helix_on_core")
+    out.mkdir(parents=True, exist_ok=True)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8))
+    ax1.plot(1e3 * s_pairs, q_T0 / 1e3, "o", ms=2, label="strand (pair force / ℓ)")
+    ax1.axhline(T0 * kappa / 1e3, color="k", lw=1, label=r"$T_0 \sin^2\alpha / r$")
+    ax1.set(
+        xlabel="arc length s (mm)",
+        ylabel="line load q (kN/m)",
+        title=r"frictionless, tension $T_0$",
+    )
+    ax2.plot(1e3 * s_cell, T_cell / 1e3, "o", ms=2, label="strand (axial force)")
+    ax2.plot(1e3 * s_cell, T_exact / 1e3, "k-", lw=1, label=r"capstan: $T_B\,e^{-\mu\kappa(S-s)}$")
+    ax2.axvline(1e3 * front, color="grey", ls=":", label="slip front")
+    ax2.set(
+        xlabel="arc length s (mm)",
+        ylabel="wire tension T (kN)",
+        title=r"with friction, B slid further",
+    )
+    for ax in (ax1, ax2):
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out / "helix_on_core.png", dpi=120)
+    print("picture:", out / "helix_on_core.png")

@@ -36,4 +36,5 @@ napoleon_google_docstring = True
 suppress_warnings = ["myst.header"]
 html_theme = "alabaster"
 html_static_path = ["_static"]
+html_css_files = ["strand.css"]  # the tutorials' printed output, the gallery
 html_theme_options = {"page_width": "1100px", "sidebar_width": "230px"}

@@ -48,6 +48,7 @@ _API = {
     "candidate_pairs": "strand.contact",
     "candidate_stencils": "strand.contact",
     "contact_terms": "strand.contact",
+    "dof_values": "strand.contact",
     "hertz_laws": "strand.contact",
     "hertz_mindlin": "strand.contact",
     "locate_nodes": "strand.contact",
@@ -171,6 +172,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .contact import candidate_pairs as candidate_pairs
     from .contact import candidate_stencils as candidate_stencils
     from .contact import contact_terms as contact_terms
+    from .contact import dof_values as dof_values
     from .contact import hertz_laws as hertz_laws
     from .contact import hertz_mindlin as hertz_mindlin
     from .contact import locate_nodes as locate_nodes

@@ -17,6 +17,7 @@ from strand.contact import (
     candidate_pairs,
     candidate_stencils,
     contact_terms,
+    dof_values,
     hertz_laws,
     locate_nodes,
     node_pairs,
@@ -97,6 +98,27 @@ def test_candidate_stencils_on_the_input_arrays_are_the_pairs_of_the_mesh():
         np.testing.assert_array_equal(x[pairs.nodes], pts[rows])
         np.testing.assert_array_equal(pairs.positions, pts[rows])
         np.testing.assert_array_equal(pairs.initial_gap, gaps[pairs.index])
+
+
+def test_dof_values_reads_nodes_and_cells_at_points_in_their_order():
+    """The unknowns of the nodes at given points, in the points' order, whatever the dof order;
+    a DG0 function's values at its cells' midpoints; a point with no dof is refused, naming it
+    (on N ranks: ``test_mpi.py``)."""
+    V, a, b = two_beams([0.0, 1.0, 0.0], 0.0, n=4)
+    w = fem.Function(V)
+    w.interpolate(lambda p: np.vstack([p, 10 * p]))
+    x = V.tabulate_dof_coordinates()
+    points = x[np.r_[b[::-1], a]]
+    np.testing.assert_array_equal(dof_values(w, points), np.c_[points, 10 * points])
+    np.testing.assert_array_equal(dof_values(w, points[3]), [[*points[3], *(10 * points[3])]])
+    c = fem.Function(fem.functionspace(V.mesh, ("DG", 0)))
+    c.interpolate(lambda p: p[0] + p[1])
+    mid = 0.5 * (x[a[1:]] + x[a[:-1]])
+    np.testing.assert_allclose(dof_values(c, mid)[:, 0], mid[:, 0], rtol=1e-15)
+    with pytest.raises(ValueError, match=r"point \[0.001, 0.0, 0.0\] is 0.001 m from"):
+        dof_values(w, [0.001, 0.0, 0.0])
+    with pytest.raises(ValueError, match="points must be"):
+        dof_values(w, [0.0, 0.0])
 
 
 def test_bad_pairs_are_refused_in_one_line():

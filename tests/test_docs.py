@@ -126,6 +126,82 @@ def test_every_demo_is_a_tutorial_with_its_maths(built):
     assert 'class="math' in (pages / "demo_section_law.html").read_text()
 
 
+def _images(page: Path) -> list[Path]:
+    """The images an HTML page of the build shows, as files of the build."""
+    sources = re.findall(r'<img [^>]*src="([^"]+)"', page.read_text())
+    return [
+        (page.parent / src).resolve() for src in sources if not src.startswith(("http", "data:"))
+    ]
+
+
+def test_every_image_a_page_shows_is_in_the_build(built):
+    shown = {page: _images(page) for page in built.rglob("*.html")}
+    missing = [(str(p.relative_to(built)), str(i)) for p, images in shown.items() for i in images
+               if not (i.is_file() and i.stat().st_size > 0)]  # fmt: skip
+    assert missing == []
+    committed = {p.name for p in DOCS.glob("_static/**/*.png")}
+    assert committed <= {i.name for images in shown.values() for i in images}
+
+
+def test_every_tutorial_shows_its_figures_and_what_it_printed(built):
+    """Each tutorial page shows the figures its demo draws and what its cells printed, as
+    recorded (``scripts/record_figures.py``): the crossed beams' friction loop against the closed
+    form among them."""
+    pages = built / "_generated" / "tutorials"
+    for demo in sorted((ROOT / "demos").glob("demo_*.py")):
+        page = pages / f"{demo.stem}.html"
+        figures = {p.name for p in (DOCS / "_static" / "tutorials" / demo.stem).glob("*.png")}
+        assert figures and figures <= {i.name for i in _images(page)}, demo.stem
+        assert page.read_text().count('class="demo-output') >= 1, demo.stem
+    crossed = (pages / "demo_crossed_beams.html").read_text()
+    assert "friction_loop.png" in crossed and "largest |Q − Q_exact| / μP = " in crossed
+
+
+def test_the_recorded_results_are_those_of_the_demos_as_they_are():
+    """Every recorded cell is a code cell of its demo as it is now, and every recorded figure is
+    named by one (else: ``python scripts/record_figures.py <demo>``)."""
+    pytest.importorskip("sphinx")
+    pytest.importorskip("jupytext")
+    sys.path.insert(0, str(DOCS / "_ext"))
+    from strand_docs import demo_page
+
+    for demo in sorted((ROOT / "demos").glob("demo_*.py")):
+        assert (DOCS / "_static" / "tutorials" / demo.stem / "outputs.json").is_file(), demo.stem
+        assert demo_page(demo)[1] == [], demo.stem
+
+
+def test_the_outputs_reference_shows_every_figure_a_run_draws(built):
+    """Each figure a run draws, the quick case's, beside its description."""
+    from strand.app.run_files import OUTPUTS
+
+    figures = {name for name in OUTPUTS if name.endswith(".png")}
+    page = built / "outputs.html"
+    assert figures <= {i.name for i in _images(page)}
+    for name in figures:  # under it, a caption that names it and says what it shows
+        caption = rf'src="_images/{name}" />\s*<figcaption>\s*<p><span class="caption-text"><code'
+        assert re.search(
+            caption + rf'[^>]*><span class="pre">{name}</span></code> \(', page.read_text()
+        ), name
+
+
+def test_the_gallery_shows_every_figure_with_a_link_to_its_page(built):
+    """The gallery shows every figure the docs hold, each linked to its tutorial or to its
+    description in the outputs reference."""
+    recorded = {p.name for p in (DOCS / "_static").glob("*/**/*.png")}
+    gallery = built / "gallery.html"
+    assert recorded <= {i.name for i in _images(gallery)}
+    links = re.findall(r'href="([^"]+)"', gallery.read_text())
+    for demo in sorted((ROOT / "demos").glob("demo_*.py")):
+        assert f"_generated/tutorials/{demo.stem}.html" in links, demo.stem
+    for name in sorted(p.stem for p in (DOCS / "_static" / "outputs").glob("*.png")):
+        assert f"outputs.html#{name.replace('_', '-')}-png" in links, name
+
+
+def test_the_figures_are_small():
+    large = [str(p) for p in DOCS.glob("_static/**/*.png") if p.stat().st_size > 120_000]
+    assert large == []
+
+
 def test_the_theory_writes_its_formulas_as_maths():
     text = (DOCS / "theory.md").read_text()
     prose = re.sub(r"\$\$.*?\$\$", "", text, flags=re.S)

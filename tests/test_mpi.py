@@ -217,21 +217,14 @@ def test_owned_rows_refuses_a_stencil_missing_on_its_anchors_rank():
 
 
 ROOT = Path(__file__).parents[1]
-SERIAL_ONLY = [
-    *sorted(
-        p
-        for p in (ROOT / "demos").glob("demo_*.py")
-        if p.stem not in ("demo_strand_bending", "demo_crossed_beams")  # these run on N ranks
-    ),
-    ROOT / "benchmarks" / "mesh_build.py",
-]
+SERIAL_ONLY = [ROOT / "benchmarks" / "mesh_build.py"]  # the demos run on N ranks: test_demos.py
 
 
 @needs_mpirun
 @pytest.mark.parametrize("script", SERIAL_ONLY, ids=[p.stem for p in SERIAL_ONLY])
 def test_serial_scripts_refuse_mpirun_in_one_line(script, tmp_path):
-    """Demos that index nodes locally and the benchmarks (which compare variants in one process)
-    stop before computing, with one line and exit code 2, instead of hanging."""
+    """The benchmarks (which compare variants in one process) stop before computing, with one
+    line and exit code 2, instead of hanging."""
     done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
                           capture_output=True, text=True, timeout=120)  # fmt: skip
     lines = [line for line in done.stderr.splitlines() if line.strip()]
@@ -269,8 +262,9 @@ COLLECTIVE_API = """
 import strand
 import numpy as np
 from mpi4py import MPI
-from strand.contact import ContactError, candidate_pairs, locate_nodes
+from strand.contact import ContactError, candidate_pairs, dof_values, locate_nodes
 from strand.cable.mesh import beam_space, polyline_mesh
+from strand.cable.pictures import tubes
 from strand.solver import NodalLoad, NonlinearProblem
 from forms import CircularSection, ReissnerBeam
 from dolfinx import fem
@@ -304,6 +298,19 @@ load = NodalLoad(nodes, np.tile([0.0, 0.0, 1.0, 0.0, 0.0, 0.0], (len(nodes), 1))
 problem = NonlinearProblem(ReissnerBeam(w, CircularSection(2 * r, 2e11, 0.3)).residual(), w,
                            terms=[load])
 say("load", comm.allreduce(float(problem.unconstrained_residual()[:, 2].sum())))
+# every node's value, the ghost's once; a DG0 function's at the cells' midpoints
+w.interpolate(lambda p: np.vstack([p[0], 2 * p[0], 0 * p, 0 * p[:1]]))
+say("nodes", np.array_equal(dof_values(w, x)[:, :2], np.c_[x[:, 0], 2 * x[:, 0]]))
+m = 0.5 * (x[1:] + x[:-1])
+c = fem.Function(fem.functionspace(V.mesh, ("DG", 0)))
+c.interpolate(lambda p: p[0])
+say("cells", np.array_equal(dof_values(c, m)[:, 0], m[:, 0]))
+try:
+    dof_values(c, x[:1])
+except ValueError as e:
+    say("no dof:", e)
+tube = tubes(V, scalars=c.x.array, name="x", radius=r)
+say("tube", None if tube is None else [round(v, 9) for v in tube.bounds[:2]])
 """
 
 
@@ -314,7 +321,8 @@ def test_the_contact_api_is_collective_on_2_ranks(tmp_path):
     both ranks, ``candidate_pairs`` refuses the pair split between the ranks on both, naming the
     partitioner. One beam cut between the ranks: ``NodalLoad`` given every node the rank holds,
     the ghost at the cut included, loads each node once (the residual sums to minus the 33
-    nodes' unit forces)."""
+    nodes' unit forces); ``dof_values`` reads every node and cell once, on both ranks, and
+    refuses a point where no dof is; ``tubes`` gives rank 0 the whole beam, rank 1 nothing."""
     script = tmp_path / "api.py"
     script.write_text(COLLECTIVE_API)
     done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
@@ -326,6 +334,9 @@ def test_the_contact_api_is_collective_on_2_ranks(tmp_path):
     assert sum("split: candidate_pairs: 1 of 1 pairs" in line and "slab_partitioner" in line
                for line in lines) == 2, lines  # fmt: skip
     assert lines.count("load -33.0") == 2, lines
+    assert lines.count("nodes True") == 2 and lines.count("cells True") == 2, lines
+    assert sum("no dof: point [0.0, 0.0, 0.0] is 0.00313 m" in line for line in lines) == 2, lines
+    assert lines.count("tube [0.0, 0.2]") == 1 and lines.count("tube None") == 1, lines
 
 
 @needs_mpirun

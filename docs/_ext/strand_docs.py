@@ -2,18 +2,23 @@
 settings dataclasses, and the demos as tutorials, converted by jupytext without running them.
 
 Nothing here is hand-copied: a setting added to a settings class, or a demo added to ``demos/``,
-appears in the next build.
+appears in the next build. The tutorials show what each demo printed and drew as recorded in
+``_static/tutorials/`` (``scripts/record_figures.py``): the build runs no demo.
 """
 
 from __future__ import annotations
 
 import inspect
+import json
 import re
 from dataclasses import fields
 from pathlib import Path
 
+from sphinx.util import logging
+
 ROOT = Path(__file__).parents[2]
 GENERATED = "_generated"
+logger = logging.getLogger(__name__)
 
 
 # --- settings reference ---------------------------------------------------------------------
@@ -117,23 +122,77 @@ def kind_columns() -> str:
 
 # --- tutorials from the demos -----------------------------------------------------------------
 
+#: what each demo printed and drew when last recorded (``scripts/record_figures.py``), per demo
+RECORDED = Path(__file__).parents[1] / "_static" / "tutorials"
 
-def demo_page(path: Path) -> str:
-    """A demo (jupytext py:light) as a MyST page: its markdown cells as text, its code cells as
-    code blocks, not executed; a line under its title says how to run it."""
+
+def recorded(stem: str) -> tuple[list[dict], list[str]]:
+    """A demo's recorded cells (``{"code", "output"}``, in order) and figure files."""
+    folder = RECORDED / stem
+    cells = json.loads((folder / "outputs.json").read_text()) if folder.is_dir() else []
+    return cells, sorted(p.name for p in folder.glob("*.png"))
+
+
+def _printed(text: str) -> str:
+    return f"```{{code-block}} text\n:class: demo-output\n\n{text.rstrip()}\n```"
+
+
+def _figure(stem: str, name: str) -> str:
+    return (
+        f"```{{figure}} /_static/tutorials/{stem}/{name}\n:alt: {name}, drawn by {stem}\n\n"
+        f"`{name}`, drawn by the code above (in `results/{stem}/`)\n```"
+    )
+
+
+def demo_page(path: Path) -> tuple[str, list[str]]:
+    """A demo (jupytext py:light) as a MyST page, and what of its record is stale: its markdown
+    cells as text, its code cells as code blocks, not executed; under each code cell what it
+    printed and the figures it draws, as recorded; a line under its title says how to run it.
+
+    The stale list names each recorded cell no longer in the demo and each figure no code cell
+    names (``generate`` warns of them, which fails a ``-W`` build)."""
     import jupytext
+    import nbformat
 
     nb = jupytext.read(path)
     nb.metadata = {}
+    cells, figures = recorded(path.stem)
+    printed = {c["code"]: c["output"] for c in cells if c["output"].strip()}
+    code = {c.source for c in nb.cells if c.cell_type == "code"}
+    stale = [f"a recorded cell is not in the demo: {c['code'][:60]!r}..." for c in cells
+             if c["code"] not in code]  # fmt: skip
+    placed = set()
+    shown = []
+    for cell in nb.cells:
+        shown.append(cell)
+        if cell.cell_type != "code":
+            continue
+        after = [_printed(printed[cell.source])] if cell.source in printed else []
+        for name in figures:
+            if name not in placed and name in cell.source:
+                placed.add(name)
+                after.append(_figure(path.stem, name))
+        if after:
+            shown.append(nbformat.v4.new_markdown_cell("\n\n".join(after)))
+    stale += [f"no code cell draws the recorded {name}" for name in figures if name not in placed]
+    nb.cells = shown
     text = jupytext.writes(nb, fmt="md")
     text = re.sub(r"\A---\n.*?\n---\n+", "", text, flags=re.S)  # jupytext's header
+    text = re.sub(r"^<!-- #(end)?region -->\n", "", text, flags=re.M)
+    outputs = (
+        "shown with what each cell printed and the figures it drew in a serial run (recorded "
+        "by `scripts/record_figures.py`)"
+        if cells
+        else "shown here without its outputs"
+    )
     run = (
-        f"\n*This tutorial is `demos/{path.name}`, shown here without its outputs. Run it "
-        f"with `.venv/bin/python demos/{path.name}`: it checks itself and leaves its figures "
-        "in `results/`. The tests run it too (`tests/test_demos.py`).*\n"
+        f"\n*This tutorial is `demos/{path.name}`, {outputs}. Run it with `.venv/bin/python "
+        f"demos/{path.name}`, or on two processes with `.venv/bin/mpirun -n 2 .venv/bin/python "
+        f"demos/{path.name}`: it checks itself and leaves its figures in `results/`. The tests "
+        "run it both ways (`tests/test_demos.py`).*\n"
     )
     title, _, rest = text.partition("\n")
-    return f"{title}\n{run}{rest}"
+    return f"{title}\n{run}{rest}", stale
 
 
 def _write(path: Path, text: str) -> None:
@@ -150,7 +209,10 @@ def generate(app) -> None:
     _write(out / "kind_columns.inc", kind_columns())
     demos = sorted((ROOT / "demos").glob("demo_*.py"))
     for demo in demos:
-        _write(out / "tutorials" / f"{demo.stem}.md", demo_page(demo))
+        page, stale = demo_page(demo)
+        _write(out / "tutorials" / f"{demo.stem}.md", page)
+        for problem in stale:
+            logger.warning(f"{demo.name}: {problem}: run scripts/record_figures.py {demo.stem}")
     for stale in (out / "tutorials").glob("*.md"):
         if not (ROOT / "demos" / f"{stale.stem}.py").exists():
             stale.unlink()

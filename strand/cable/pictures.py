@@ -24,24 +24,37 @@ def offscreen_plotter(**kwargs):
 def tubes(
     V_or_mesh, displacement=None, scalars=None, name="value", radius=1e-3, n_sides=16, cells=None
 ):
-    """Tubes of ``radius`` (m) around the (displaced) centrelines of a 1D mesh.
+    """Tubes of ``radius`` (m) around the (displaced) centrelines of a 1D mesh. Collective: on
+    several ranks each rank gives its own part and rank 0 gets the tubes of the whole mesh, the
+    other ranks None (draw on rank 0).
 
     ``displacement`` is an (n_nodes, 3) array in the order of ``dolfinx.plot.vtk_mesh`` of the
-    mesh (its geometry nodes) and ``scalars`` a per-cell or per-node array to colour by;
-    ``cells`` (local cell indices) keeps only those cells.
+    mesh (its geometry nodes; a space's dofs when given a space) and ``scalars`` a per-cell (this
+    rank's cells, its ghosts may follow, as in a DG0 function's array) or per-node array to colour
+    by; ``cells`` (local cell indices) keeps only those cells.
     """
     import dolfinx.plot
     import pyvista
 
+    mesh = getattr(V_or_mesh, "mesh", V_or_mesh)
+    comm = mesh.comm
+    index_map = mesh.topology.index_map(mesh.topology.dim)
+    owned = index_map.size_local  # vtk_mesh draws this rank's own cells
     topology, cell_types, x = dolfinx.plot.vtk_mesh(V_or_mesh)
     grid = pyvista.UnstructuredGrid(topology, cell_types, x.copy())
-    per_cell = scalars is not None and len(scalars) == grid.n_cells
+    per_cell = scalars is not None and len(scalars) in (owned, owned + index_map.num_ghosts)
     if displacement is not None:
         grid.points = grid.points + np.asarray(displacement).reshape(-1, 3)
     if scalars is not None:
-        grid[name] = np.asarray(scalars)
+        grid[name] = np.asarray(scalars)[:owned] if per_cell else np.asarray(scalars)
     if cells is not None:
-        grid = grid.extract_cells(cells)
+        cells = np.asarray(cells)
+        grid = grid.extract_cells(cells[cells < owned])
+    if comm.size > 1:
+        parts = comm.gather(grid, root=0)
+        if comm.rank != 0:
+            return None
+        grid = pyvista.merge([p for p in parts if p.n_cells], merge_points=True)
     if per_cell:
         grid = grid.cell_data_to_point_data()
     return grid.extract_surface(algorithm=None).tube(radius=radius, n_sides=n_sides)

@@ -19,7 +19,7 @@ from .laws import (
     PenaltyLaw,
     hertz_mindlin,
 )
-from .nodes import BeamNodes, beam_nodes, locate_nodes
+from .nodes import BeamNodes, beam_nodes, dof_values, locate_nodes
 from .pairs import (
     NodePairs,
     candidate_pairs,
@@ -50,6 +50,7 @@ __all__ = [
     "candidate_pairs",
     "candidate_stencils",
     "contact_terms",
+    "dof_values",
     "hertz_laws",
     "hertz_mindlin",
     "locate_nodes",

@@ -1,4 +1,5 @@
-"""The nodes of beams in a dolfinx mesh: their positions and neighbours, and nodes found at points.
+"""The nodes of beams in a dolfinx mesh: their positions and neighbours, nodes found at points,
+and the values there read on any number of ranks.
 
 Nodes are local dof blocks of the beam space V (dolfinx's blocked P1 space of (u, θ)): what
 ``fem.locate_dofs_geometrical(V, marker)`` and ``locate_dofs_topological(V, 0, vertices)`` return.
@@ -14,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 from mpi4py import MPI
 
-__all__ = ["BeamNodes", "beam_nodes", "chains", "input_arrays", "locate_nodes"]
+__all__ = ["BeamNodes", "beam_nodes", "chains", "dof_values", "input_arrays", "locate_nodes"]
 
 Array = npt.NDArray[np.float64]
 Blocks = npt.NDArray[np.int32]
@@ -77,6 +78,48 @@ def _chunks(rows: int, columns: int, budget: int = 2**21):
     return [slice(i, min(i + step, rows)) for i in range(0, rows, step)]
 
 
+def _nearest(p: Array, x: Array, tol: float = 0.0):
+    """For each point of ``p`` (P, 3): the row of ``x`` (n, 3) nearest it, its distance, and how
+    many rows are within ``tol`` of it."""
+    nearest = np.zeros(len(p), dtype=np.intp)
+    distance = np.full(len(p), np.inf)
+    within = np.zeros(len(p), dtype=np.int64)
+    for rows in _chunks(len(p), len(x)) if len(x) else []:
+        d = np.linalg.norm(p[rows, None, :] - x[None, :, :], axis=2)
+        nearest[rows] = d.argmin(axis=1)
+        distance[rows] = d[np.arange(len(d)), nearest[rows]]
+        within[rows] = np.count_nonzero(d <= tol, axis=1)
+    return nearest, distance, within
+
+
+def _points(points) -> Array:
+    p = np.atleast_2d(np.asarray(points, dtype=float))
+    if p.shape[1] != 3:
+        raise ValueError(f"points must be (P, 3) in m; got shape {p.shape}")
+    return p
+
+
+def _tolerance(comm, x: Array, tol: float | None) -> float:
+    """``tol``, default 1e-8 of the extent of the points ``x`` of every rank."""
+    if tol is not None:
+        return tol
+    low, high = x.min(axis=0, initial=np.inf), x.max(axis=0, initial=-np.inf)
+    if comm.size > 1:
+        comm.Allreduce(MPI.IN_PLACE, low, op=MPI.MIN)
+        comm.Allreduce(MPI.IN_PLACE, high, op=MPI.MAX)
+    return 1e-8 * float(np.max(high - low, initial=1.0) if np.all(np.isfinite(low)) else 1.0)
+
+
+def _refuse_far(p: Array, closest: Array, tol: float, remedy: str) -> None:
+    far = np.flatnonzero(closest > tol)
+    if len(far):
+        i = far[0]
+        raise ValueError(
+            f"point {p[i].tolist()} is {closest[i]:.3g} m from the nearest node (tolerance "
+            f"{tol:.3g} m): {remedy}"
+        )
+
+
 def locate_nodes(V, points, tol: float | None = None) -> Blocks:
     """The nodes of ``V`` at ``points`` (m, (P, 3) or (3,)) that this rank holds: local dof
     blocks, owned and ghost, as ``fem.locate_dofs_geometrical`` returns them. Collective.
@@ -88,32 +131,51 @@ def locate_nodes(V, points, tol: float | None = None) -> Blocks:
     """
     comm = V.mesh.comm
     x = np.asarray(V.tabulate_dof_coordinates(), dtype=float).reshape(-1, 3)
-    p = np.atleast_2d(np.asarray(points, dtype=float))
-    if p.shape[1] != 3:
-        raise ValueError(f"points must be (P, 3) in m; got shape {p.shape}")
-    if tol is None:
-        low, high = x.min(axis=0, initial=np.inf), x.max(axis=0, initial=-np.inf)
-        if comm.size > 1:
-            comm.Allreduce(MPI.IN_PLACE, low, op=MPI.MIN)
-            comm.Allreduce(MPI.IN_PLACE, high, op=MPI.MAX)
-        tol = 1e-8 * float(np.max(high - low, initial=1.0) if np.all(np.isfinite(low)) else 1.0)
-    nearest = np.zeros(len(p), dtype=np.intp)
-    distance = np.full(len(p), np.inf)
-    for rows in _chunks(len(p), len(x)) if len(x) else []:
-        d = np.linalg.norm(p[rows, None, :] - x[None, :, :], axis=2)
-        nearest[rows] = d.argmin(axis=1)
-        distance[rows] = d[np.arange(len(d)), nearest[rows]]
+    p = _points(points)
+    tol = _tolerance(comm, x, tol)
+    nearest, distance, _ = _nearest(p, x)
     closest = distance.copy()
     if comm.size > 1:
         comm.Allreduce(MPI.IN_PLACE, closest, op=MPI.MIN)
-    far = np.flatnonzero(closest > tol)
-    if len(far):
-        i = far[0]
-        raise ValueError(
-            f"point {p[i].tolist()} is {closest[i]:.3g} m from the nearest node (tolerance "
-            f"{tol:.3g} m): put a node there, or use candidate_pairs"
-        )
+    _refuse_far(p, closest, tol, "put a node there, or use candidate_pairs")
     return nearest[distance <= tol].astype(np.int32)
+
+
+def dof_values(u, points, tol: float | None = None) -> Array:
+    """The values of the function ``u`` at the dofs at ``points`` (m, (P, 3) or (3,)), as a
+    (P, bs) array in the order of ``points``, on every rank. Collective.
+
+    The points are where ``u``'s dofs sit (``tabulate_dof_coordinates``): nodes of a P1 space
+    such as the beam space (bs = 6: u, θ), cell midpoints of a DG0 one (a section force per
+    cell). Each value is read on the rank that owns its dof and summed over the ranks, so a
+    ghost is counted once: on any number of ranks the result is the serial one. ``tol`` and a
+    point with no dof within it: as ``locate_nodes``.
+    """
+    V = u.function_space
+    comm = V.mesh.comm
+    owned = V.dofmap.index_map.size_local
+    bs = V.dofmap.index_map_bs
+    x = np.asarray(V.tabulate_dof_coordinates(), dtype=float).reshape(-1, 3)
+    p = _points(points)
+    tol = _tolerance(comm, x, tol)
+    nearest, distance, found = _nearest(p, x[:owned], tol)
+    mine = distance <= tol
+    values = np.zeros((len(p), bs))
+    values[mine] = u.x.array.reshape(-1, bs)[nearest[mine]]
+    if comm.size > 1:
+        comm.Allreduce(MPI.IN_PLACE, values, op=MPI.SUM)
+        comm.Allreduce(MPI.IN_PLACE, found, op=MPI.SUM)
+    if np.any(found > 1):
+        i = int(np.argmax(found > 1))
+        raise ValueError(f"point {p[i].tolist()} has {found[i]} dofs within {tol:.3g} m: one only")
+    closest = np.zeros(len(p))
+    if not np.all(found):  # how far the points missed, for the message
+        closest = _nearest(p, x)[1]
+        if comm.size > 1:
+            comm.Allreduce(MPI.IN_PLACE, closest, op=MPI.MIN)
+        closest[found > 0] = 0.0
+    _refuse_far(p, closest, tol, "give points where the function's dofs are")
+    return values
 
 
 def input_arrays(V) -> tuple[Array, npt.NDArray[np.int64], Blocks]:

@@ -127,8 +127,8 @@ def tension_then_cycle(
     """Tension to ``load.tension``, then the legs ``load.cycle`` × ``amplitude`` of ``parameter``,
     each starting with increment ``first``, growing up to ``largest``."""
     steps = case.steps
-    legs = cycle_stages(parameter, amplitude, case.load.cycle, first, largest, steps.cuts,
-                        steps.growth, steps.predictor)  # fmt: skip
+    legs = cycle_stages(parameter, amplitude, case.load.cycle, first, largest, cuts=steps.cuts,
+                        growth=steps.growth, predictor=steps.predictor)  # fmt: skip
     return LoadProgramme((tension_stage(case), *legs), parameter)
 
 

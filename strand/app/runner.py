@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from functools import partial
 from pathlib import Path
 
 from ..model.parallel import is_root
@@ -286,7 +285,7 @@ def _report_and_figures(
     if case.output.plots:
         from .plots import fatigue_figures, results_figures
 
-        paths = results_figures(case, result, problem, partial(kind_of(case).figures, case, result))
+        paths = results_figures(case, result, problem, kind_of(case))
         if report is not None:
             paths += fatigue_figures(result.folder, report)
         for path in paths:

@@ -89,6 +89,7 @@ class TensionCycle(SetupKind):
     parameter = "tension_swing"
     unit = "N"
     progress_unit = ("kN", 1e3)
+    symbol = "ΔT"
     measure = "end_displacement"
     load_settings = TensionCycleLoad
     step_settings = TensionCycleSteps

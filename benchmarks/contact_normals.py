@@ -23,6 +23,7 @@ from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
 from strand.model.strand_contact import centreline_gaps
+from strand.setups import SaddleTest
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
 
 
@@ -31,6 +32,7 @@ def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
         geometry,
         ContactSettings(normal=normal, friction=friction, compliance="penalty"),
         NewtonOptions(atol=1e-3, max_it=12),
+        setup=SaddleTest,
     )
     out = {"normal": normal, "failed": ""}
     t0 = time.perf_counter()

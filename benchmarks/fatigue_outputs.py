@@ -26,6 +26,7 @@ from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.post import CellEvaluator, cell_results
 from strand.model.problem import StrandProblem
+from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 
 
@@ -40,7 +41,7 @@ def _size(paths) -> int:
 def main(steps: int = 10) -> None:
     print(f"stamp: {stamp()}\n")
     geometry = build_geometry(cardinal(), 1.0, 4e-3)
-    problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-2))
+    problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-2), setup=SaddleTest)
     LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
     problem.setup.set_lateral(250.0)
     problem.solver.solve()

@@ -27,6 +27,7 @@ from strand.app.case import load_case
 from strand.cable.geometry import build_geometry
 from strand.model.problem import StrandProblem
 from strand.model.same_layer import same_layer_pairs
+from strand.setups import SaddleTest
 from strand.solver.ordering import ORDERINGS, pattern_lu
 from strand.solver.terms import create_extended_matrix
 
@@ -34,7 +35,7 @@ from strand.solver.terms import create_extended_matrix
 def main(length: float = 1.0) -> None:
     case = load_case(None, [f"mesh.length={length}", 'contact.same_layer="packed"'])
     geometry = build_geometry(case.cable, length, case.mesh.h_max)
-    problem = StrandProblem(geometry, case.contact)
+    problem = StrandProblem(geometry, case.contact, setup=SaddleTest)
     J = problem.solver._J  # the compiled Jacobian form
     crossings = [t.stencils for t in problem.model.contact]
     segments = [np.asarray(t.stencils) for t in problem.model.same_layer]

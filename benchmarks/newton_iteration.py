@@ -21,6 +21,7 @@ from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
+from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 
 
@@ -29,7 +30,10 @@ def main(normal: str = "director", length: float = 1.0) -> None:
     t0 = time.perf_counter()
     geometry = build_geometry(cardinal(), length, 4e-3)
     problem = StrandProblem(
-        geometry, ContactSettings(normal=normal, compliance="penalty"), NewtonOptions(atol=1e-3)
+        geometry,
+        ContactSettings(normal=normal, compliance="penalty"),
+        NewtonOptions(atol=1e-3),
+        setup=SaddleTest,
     )
     t_setup = time.perf_counter() - t0
     stepper = LoadStepper(problem.solver, 10e3, 100.0)

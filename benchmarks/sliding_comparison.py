@@ -29,6 +29,7 @@ from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
+from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 
 
@@ -38,6 +39,7 @@ def run(geometry, model: str, tension: float, p_max: float, p_step: float) -> di
         geometry,
         ContactSettings(model=model, compliance="penalty"),
         NewtonOptions(atol=1e-2, max_it=15),
+        setup=SaddleTest,
     )
     setup = time.perf_counter() - t0
     steps = LoadStepper(problem.solver, tension / 4, tension / 256)

@@ -31,7 +31,7 @@ from strand.contact.laws import (
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
 from strand.model.strand_contact import centreline_gaps
-from strand.setups.saddle import saddle_weights
+from strand.setups.saddle import SaddleTest, saddle_weights
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions, NodalLoad, NonlinearProblem
 from strand_cases import check_state_and_tangent, nineteen_wire, seven_wire
 
@@ -85,7 +85,8 @@ def crossed_pair(
     t0 = np.repeat(np.stack([ta, tb])[None], n_pairs, 0)
     full = np.full(n_pairs, 1.0)
     laws = pair_laws(compliance, line, angle, n_pairs)
-    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, *laws, normal, t0, slip=slip,
+    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, laws[0],
+                        friction_law=laws[1], normal=normal, tangent0=t0, slip=slip,
                         offset=offset * full if offset else None)  # fmt: skip
 
 
@@ -257,8 +258,8 @@ def test_crossed_beams_share_a_load_through_the_contact(angle):
         [R_A],
         [[0, 0, 1.0]],
         PenaltyLaw(np.array([K_N])),
-        None,
-        "neighbour",
+        friction_law=None,
+        normal="neighbour",
     )
     load = NodalLoad([b], [[0, 0, -1.0, 0, 0, 0]])
     P = 2.0  # N: deflection 50 µm = d/60, so the membrane stiffening stays below 1e-3
@@ -412,7 +413,9 @@ def test_centreline_slip_is_blind_to_spin_and_sees_rolling():
 def test_helix_on_core_line_load():
     """Contact line load of a tensioned helix on its core: X = T sin²α / r (docs/theory.md §5.6)."""
     geometry = seven_wire(lay_angle=12.0)
-    problem = StrandProblem(geometry, ContactSettings(same_layer="off"), NewtonOptions(atol=1e-4))
+    problem = StrandProblem(
+        geometry, ContactSettings(same_layer="off"), NewtonOptions(atol=1e-4), setup=SaddleTest
+    )
     problem.setup.set_tension(20e3)
     assert problem.solver.solve().converged
     layer = geometry.cable.layers[1]
@@ -441,7 +444,9 @@ def test_newton_converges_quadratically_on_a_seven_wire_strand(normal):
     geometry = seven_wire()
     iterates = []
     options = NewtonOptions(atol=1e-12, rtol=1e-16, stol=0.0, max_it=6)
-    problem = StrandProblem(geometry, ContactSettings(same_layer="off", normal=normal), options)
+    problem = StrandProblem(
+        geometry, ContactSettings(same_layer="off", normal=normal), options, setup=SaddleTest
+    )
     snes = problem.solver.solver
     problem.solver.monitor = lambda i, r: iterates.append(snes.getSolution().array_r.copy())
     histories = []
@@ -472,7 +477,10 @@ def test_gap_consistency_on_a_bent_strand(normal):
     """
     geometry = nineteen_wire()
     problem = StrandProblem(
-        geometry, ContactSettings(same_layer="off", normal=normal), NewtonOptions(atol=1e-4)
+        geometry,
+        ContactSettings(same_layer="off", normal=normal),
+        NewtonOptions(atol=1e-4),
+        setup=SaddleTest,
     )
     stepper = LoadStepper(problem.solver, 10e3, 1e3)
     stepper.ramp(problem.setup.set_tension, 0.0, 20e3)
@@ -586,8 +594,8 @@ def test_a_diverged_newton_under_friction_is_cut_not_accepted():
     a, b = n // 2, n + 1 + n // 2
     group = ContactGroup(
         i2b[[a, b]][None], pts[[a, b]][None], False, [R_A], [R_A], [[0, 0, 1.0]],
-        PenaltyLaw(np.array([K_N])), ElasticSlip(np.array([MU]), G_LIM), "director",
-        np.array([[[1.0, 0, 0], [0, 1.0, 0]]]),
+        PenaltyLaw(np.array([K_N])), friction_law=ElasticSlip(np.array([MU]), G_LIM),
+        normal="director", tangent0=np.array([[[1.0, 0, 0], [0, 1.0, 0]]]),
     )  # fmt: skip
     press = NodalLoad([i2b[b]], [[0, 0, -2.0, 0, 0, 0]], 1.0)
     drag = NodalLoad([i2b[b]], [[1.0, 0, 0, 0, 0, 0]], 0.0)

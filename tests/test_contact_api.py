@@ -90,7 +90,7 @@ def test_candidate_stencils_on_the_input_arrays_are_the_pairs_of_the_mesh():
         a, b = locate_nodes(V, pts[: n + 1]), locate_nodes(V, pts[n + 1 :])
         reach = 1e-6 if line else 1e-3  # no node of b at the crossing
         rows = candidate_stencils(pts, cells, range(n + 1), range(n + 1, n + n_b + 2), R, R,
-                                  reach, line)  # fmt: skip
+                                  reach, line=line)  # fmt: skip
         gaps = -1e-6 * np.arange(1, len(rows) + 1)
         pairs = candidate_pairs(V, a, b, R, R, reach, line=line, initial_gap=gaps)
         assert len(rows) == len(pairs) == (n_b + 1 if line else 1)

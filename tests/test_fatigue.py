@@ -130,7 +130,7 @@ E_AL, NU_AL, R_AL = 69e9, 0.33, 1.66e-3
 def test_contact_ellipse_of_a_sphere_on_a_flat_is_hertzs_circle():
     """Crossed equal cylinders at 90°: a = b = (3PR/4E*)^{1/3}, p₀ = 3P/(2πa²), exactly."""
     e_star = 1 / (2 * compliance(E_AL, NU_AL))
-    a, b, p0 = contact_ellipse(R_AL, R_AL, np.pi / 2, E_AL, NU_AL, E_AL, NU_AL, 40.0)
+    a, b, p0 = contact_ellipse(R_AL, R_AL, np.pi / 2, E_AL, NU_AL, E_AL, NU_AL, force=40.0)
     radius = (3 * 40.0 * R_AL / (4 * e_star)) ** (1 / 3)
     assert a == pytest.approx(radius, rel=1e-12) and b == pytest.approx(radius, rel=1e-12)
     assert p0 == pytest.approx(3 * 40.0 / (2 * np.pi * radius**2), rel=1e-12)
@@ -153,7 +153,7 @@ def test_contact_ellipse_against_hertzs_elliptic_integrals(deg):
     a = (3 * force * (K(m) - Ee(m)) / (2 * np.pi * A * e_star * m)) ** (1 / 3)
     b = a * np.sqrt(1 - m)
     p0 = 3 * force / (2 * np.pi * a * b)
-    got = contact_ellipse(R_AL, R_AL, np.radians(deg), E_AL, NU_AL, E_AL, NU_AL, force)
+    got = contact_ellipse(R_AL, R_AL, np.radians(deg), E_AL, NU_AL, E_AL, NU_AL, force=force)
     np.testing.assert_allclose(got, (a, b, p0), rtol=0.03)
 
 

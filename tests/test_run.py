@@ -121,13 +121,14 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
     from strand.cable.geometry import build_geometry
     from strand.model.post import cell_results
     from strand.model.problem import StrandProblem
+    from strand.setups import SaddleTest
     from strand.solver import LoadStepper, NewtonOptions
 
     case = case_from_dict(
         {"contact": {"compliance": "penalty", "k_point": 5e8, "k_line": 5e10, "same_layer": "off"}}
     )
     geometry = build_geometry(case.cable, 0.2, 4e-3)
-    problem = StrandProblem(geometry, case.contact, NewtonOptions(atol=1e-2))
+    problem = StrandProblem(geometry, case.contact, NewtonOptions(atol=1e-2), setup=SaddleTest)
     LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
     ref = fibre_model(case.cable, 40e3)
     strain = problem.setup.end_displacement() / geometry.length
@@ -217,7 +218,8 @@ def test_small_sliding_drift_is_the_elements_own_gap_drift(interface):
     t0 = np.array([[tangent(inner, g.points[p.a[k]]), tangent(outer, g.points[p.b[k]])]])
     group = ContactGroup(
         np.array([[0, 1]]), g.points[[p.a[k], p.b[k]]][None], False, [p.radius_a[k]],
-        [p.radius_b[k]], p.normal[k][None], PenaltyLaw(np.array([5e7])), None, "director", t0,
+        [p.radius_b[k]], p.normal[k][None], PenaltyLaw(np.array([5e7])), friction_law=None,
+        normal="director", tangent0=t0,
     )  # fmt: skip
     dz = 1e-3 * np.cos(outer.alpha)
     dphi = outer.angular_rate * dz

@@ -213,3 +213,15 @@ def test_an_unknown_kind_is_refused_in_one_line_naming_the_known_ones(seven, tmp
         "[load] kind = 'twist' is unknown; choose saddle, bending or tension_cycle"
     )
     assert not out.exists()
+
+
+def test_figure_titles_name_the_kinds_own_load():
+    """Figure titles give the largest load as the kind names its cycled parameter: the saddle
+    load P in kN (as ever), the curvature κ of a bending run (not "P = 0.00 kN"), the tension
+    swing ΔT, and a displacement-controlled saddle test's prescribed deflection in mm."""
+    from strand.app.kinds.saddle import SaddleDisplacement
+
+    assert kinds.lookup("saddle").load_text(4300.0) == "P = 4.30 kN"
+    assert kinds.lookup("bending").load_text(0.0125) == "κ = 0.0125 1/m"
+    assert kinds.lookup("tension_cycle").load_text(-2000.0) == "ΔT = -2.00 kN"
+    assert SaddleDisplacement("deflection").load_text(1.5e-3) == "deflection = 1.50 mm"

@@ -10,6 +10,7 @@ from strand.contact.laws import ElasticSlip, PenaltyLaw
 from strand.contact.sliding import SlidingGroup, SlidingWindowError
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
+from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 from strand_cases import fd_tangent, nineteen_wire, seven_wire
 
@@ -31,7 +32,7 @@ def dragged_pair(angle_deg: float = 90.0, reach: int = 3, mu: float = 0.0):
     tangents = np.repeat([[1.0, 0.0, 0.0], [np.cos(t), np.sin(t), 0.0]], na, axis=0)[None]
     group = SlidingGroup(
         stencil, X, na, False, [[reach, reach]], PenaltyLaw(np.array([K_N])),
-        ElasticSlip(np.array([mu]), 5e-6), wire_end=ends,
+        friction_law=ElasticSlip(np.array([mu]), 5e-6), wire_end=ends,
         radius_a=R, radius_b=R, tangents=tangents,
     )  # fmt: skip
     return group, na
@@ -90,6 +91,7 @@ def test_large_and_small_sliding_agree_when_sliding_is_small():
             geometry,
             ContactSettings(same_layer="off", model=model),
             NewtonOptions(atol=1e-2, max_it=15),
+            setup=SaddleTest,
         )
         LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
         u_tension = problem.setup.end_displacement()
@@ -123,9 +125,8 @@ def arc_pair(curvature_radius: float = 0.05, line: bool = False, reach: int = 3)
     X = np.vstack([xa, xb])[None]
     group = SlidingGroup(
         np.arange(len(X[0]))[None], X, na, line, [[reach, 0 if line else reach]],
-        PenaltyLaw(np.array([K_N])), None, wire_end=np.zeros((1, 4), dtype=bool), radius_a=R,
-        radius_b=R,
-        tangents=np.vstack([ta, tb])[None],
+        PenaltyLaw(np.array([K_N])), friction_law=None, wire_end=np.zeros((1, 4), dtype=bool),
+        radius_a=R, radius_b=R, tangents=np.vstack([ta, tb])[None],
     )  # fmt: skip
     return group, na, rho
 
@@ -187,6 +188,7 @@ def test_large_sliding_tension_on_a_nineteen_wire_strand():
             geometry,
             ContactSettings(same_layer="off", model=model),
             NewtonOptions(atol=1e-2, max_it=12),
+            setup=SaddleTest,
         )
         stepper = LoadStepper(problem.solver, 10e3, 100.0)
         stepper.ramp(problem.setup.set_tension, 0.0, 40e3)

@@ -21,6 +21,7 @@ from strand.model.model import strand_stencils
 from strand.model.problem import StrandProblem
 from strand.model.same_layer import facing_point_motion, same_layer_pairs
 from strand.model.strand_contact import same_layer_windows
+from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 from strand_cases import SEVEN_WIRE, check_state_and_tangent, fd_tangent, needs_mpirun, seven_wire
 
@@ -32,16 +33,19 @@ K_N, MU, G_LIM = 5e7, 0.5, 5e-6
 def _laws(compliance: str, line: bool, angle: float):
     if compliance == "penalty":
         return PenaltyLaw(np.array([K_N])), ElasticSlip(np.array([MU]), G_LIM)
-    return hertz_mindlin(line, [R_A], R_B, angle, H, 2.1e11, 0.3, 2.1e11, 0.3, MU)
+    return hertz_mindlin(
+        line, [R_A], R_B, angle, H, E_a=2.1e11, nu_a=0.3, E_b=2.1e11, nu_b=0.3, mu=MU
+    )
 
 
 def _group(X, tangents, na, line, compliance="penalty", angle=np.pi / 2, slip="centreline"):
     """One large-sliding pair on the window X (na nodes of a, then b's), starting at a's middle
     node (and b's)."""
     reach = na // 2 - 1
+    normal_law, friction_law = _laws(compliance, line, angle)
     return SlidingGroup(
         np.arange(len(X))[None], X[None], na, line, [[reach, 0 if line else reach]],
-        *_laws(compliance, line, angle), wire_end=np.zeros((1, 4), dtype=bool), radius_a=R_A,
+        normal_law, friction_law=friction_law, wire_end=np.zeros((1, 4), dtype=bool), radius_a=R_A,
         radius_b=R_B, tangents=tangents[None], slip=slip,
     )  # fmt: skip
 
@@ -78,7 +82,8 @@ def straight_pairs(line: bool, angle_deg: float = 35.0):
     laws = _laws("penalty", line, angle)
     small = ContactGroup(
         [[0, 1]], np.stack([xa[1], xb[0 if line else 1]])[None], line, [R_A], [R_B],
-        [[0.0, 0.0, 1.0]], *laws, "director", np.stack([ta, tb])[None], slip="centreline",
+        [[0.0, 0.0, 1.0]], laws[0], friction_law=laws[1], normal="director",
+        tangent0=np.stack([ta, tb])[None], slip="centreline",
     )  # fmt: skip
     return large, small, 4 + (0 if line else 1)  # the window row of b's contact node
 
@@ -243,6 +248,7 @@ def test_large_and_small_sliding_agree_with_the_centreline_slip():
             geometry,
             ContactSettings(same_layer="off", model=model, slip=slip),
             NewtonOptions(atol=1e-2, max_it=15),
+            setup=SaddleTest,
         )
         LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3)
         u_tension = problem.setup.end_displacement()
@@ -297,7 +303,7 @@ def _packed_seven_wire(model: str, h_max: float, lateral: float = 0.0):
     length there (N/m), the core | layer-1 forces' sum, and the deflection."""
     geometry = seven_wire(length=0.1, h_max=h_max)
     problem = StrandProblem(geometry, ContactSettings(same_layer="packed", model=model),
-                            NewtonOptions(atol=1e-2, max_it=25, stall_after=0))  # fmt: skip
+                            NewtonOptions(atol=1e-2, max_it=25, stall_after=0), setup=SaddleTest)  # fmt: skip
     LoadStepper(problem.solver, 5e3, 100.0).ramp(problem.setup.set_tension, 0.0, 10e3)
     pairs = same_layer_pairs(geometry, "packed")
     middle = np.abs(geometry.points[pairs.a, 2] - 0.05) < 0.03

@@ -15,6 +15,7 @@ from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.post import cell_results, section_resultants
 from strand.model.problem import StrandProblem
+from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 
 TENSION, LENGTH = 10e3, 0.15  # N, m (1–2.3 lay lengths at 8–18°)
@@ -30,7 +31,10 @@ def tensioned(cable, contact: ContactSettings):
     """Strain (end displacement / L) and torque (about +z, N m, at midspan) under TENSION, with
     the saddle set-up's ends: z = 0 clamped, z = L rigid and free along z only."""
     problem = StrandProblem(
-        build_geometry(cable, LENGTH, 4e-3), contact, NewtonOptions(atol=1e-3, max_it=15)
+        build_geometry(cable, LENGTH, 4e-3),
+        contact,
+        NewtonOptions(atol=1e-3, max_it=15),
+        setup=SaddleTest,
     )
     setup = problem.setup
     LoadStepper(problem.solver, TENSION, TENSION / 16).ramp(

@@ -16,7 +16,7 @@ from ..solver.convergence import STALL_AFTER
 from .case import check_loads_given
 from .case_toml import case_toml
 from .folder import RUN_MARKER, check_results_folder, prepare_results_folder
-from .kinds import kind_of
+from .kinds import SetupKind, kind_of
 from .recorders import RunStep
 from .run_result import Start
 from .settings import Case
@@ -66,8 +66,7 @@ def results_folder(case: Case, folder, overwrite: bool, restart=None) -> Path:
     """The run's folder, prepared on rank 0 (``folder.prepare_results_folder``) with the whole
     case written first (``case.toml``, ``strand.app.case_toml``); every rank gets the verdict.
     A run calls it once its strand is built, so that a case that cannot be built writes
-    nothing (``check_folder`` refuses the folder before)."""
-    check_loads_given(case)
+    nothing (``check_folder`` refuses the folder, and a case without its loads, before)."""
 
     def prepare() -> Path:
         path = prepare_results_folder(folder, overwrite)
@@ -99,9 +98,9 @@ def step_control(case: Case) -> dict:
     return {"controller": controller, "retry": s.retry}
 
 
-def setup_and_programme(case: Case):
-    """The test set-up factory (taking the model) and the load programme of ``case``."""
-    kind = kind_of(case)
+def setup_and_programme(case: Case, kind: SetupKind):
+    """The test set-up factory (taking the model) and the load programme of ``case``, a case
+    of ``kind`` (``kinds.kind_of(case)``, resolved once where the run starts)."""
     return kind.setup(case), kind.programme(case)
 
 
@@ -116,16 +115,20 @@ def size_announcement(n_elements: int, n_unknowns: int) -> str:
     )
 
 
-def build_problem(case: Case, stream=None) -> tuple[StrandProblem, LoadProgramme]:
+def build_problem(
+    case: Case, stream=None, *, kind: SetupKind | None = None
+) -> tuple[StrandProblem, LoadProgramme]:
     """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
     one line about it on ``stream``, and before the finite-element mesh is built, a line on its
-    size when it has more than ``LARGE_MESH`` elements."""
+    size when it has more than ``LARGE_MESH`` elements. ``kind``: the case's set-up kind, as
+    the run resolved it (None: resolved here, for a caller that starts from the case)."""
+    kind = kind_of(case) if kind is None else kind
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     if len(geometry.cells) > LARGE_MESH:
         print(size_announcement(len(geometry.cells), 6 * len(geometry.points)), file=stream,
               flush=True)  # fmt: skip
     options = newton_options(case)
-    setup, programme = setup_and_programme(case)
+    setup, programme = setup_and_programme(case, kind)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
     size = problem.model.comm.size
     print(

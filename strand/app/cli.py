@@ -102,10 +102,11 @@ def _mesh(args) -> int:
 
 def _case_to_run(args, parser):
     """The case ``args.case`` names (a case file, or ``DEFAULT_CASE`` for the built-in one),
-    every setting checked before any computing; None, after the usage, if none is named."""
+    every setting checked before any computing (its loads, by the run: ``build.check_folder``);
+    None, after the usage, if none is named."""
     from pathlib import Path
 
-    from .case import check_loads_given, load_case
+    from .case import load_case
 
     if args.case is None:
         parser.print_usage(sys.stderr)
@@ -117,9 +118,7 @@ def _case_to_run(args, parser):
         )
         return None
     builtin = args.case.lower() == DEFAULT_CASE and not Path(args.case).exists()
-    case = load_case(None if builtin else args.case, args.set)
-    check_loads_given(case)
-    return case
+    return load_case(None if builtin else args.case, args.set)
 
 
 def _run(args, parser) -> int:

@@ -112,16 +112,16 @@ def compare_case(
     folder = Path(folder or Path(case.output.folder) / "sliding_comparison")
     for model in ("small", "large"):
         on_root(lambda model=model: check_results_folder(folder / model, overwrite))
+    kind = kind_of(case)  # resolved once, carried into both runs
     results = {}
     for model in ("small", "large"):
         print(f"--- contact model: {model} sliding ---", file=stream, flush=True)
         variant = replace(case, contact=replace(case.contact, model=model, same_layer="off"))
-        results[model] = run_case(variant, folder / model, stream, overwrite)
+        results[model] = run_case(variant, folder / model, stream, overwrite, kind=kind)
         if results[model].interrupted:
             raise KeyboardInterrupt
     small, large = results["small"], results["large"]
     n_layers = len(case.cable.layers)
-    kind = kind_of(case)
     targets = [c * kind.amplitude(case) for c in case.load.cycle]
     lines = [
         f"{case.cable.name}, L = {case.mesh.length:g} m, tension {case.load.tension / 1e3:g} kN, "

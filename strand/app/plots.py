@@ -5,7 +5,6 @@ pictures themselves (off-screen pyvista, wires as tubes) are the library's
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -15,12 +14,12 @@ from ..cable.pictures import offscreen_plotter, save
 __all__ = ["results_figures", "fatigue_figures", "stress_range_figure", "save_figure"]
 
 
-def results_figures(case, result, problem, kind_figures: Callable[[str], list[Path]]) -> list[Path]:
+def results_figures(case, result, problem, kind) -> list[Path]:
     """The run's figures (PNG) in ``result.folder``: axial force along z per layer and sector at
     the largest load (the seed paper's Fig. 3), its change from the tensioned state (Fig. 4), the
-    set-up kind's own (``kind_figures(note)``, which the runner hands in:
-    ``SetupKind.figures``; the saddle test's load–deflection loop, Fig. 5), and the deformed
-    strand coloured by axial force. Figures whose data the run did not reach are skipped."""
+    set-up ``kind``'s own (``SetupKind.figures``; the saddle test's load–deflection loop, Fig. 5),
+    and the deformed strand coloured by axial force; titles give the largest load as the kind
+    names it (``SetupKind.load_text``). Figures whose data the run did not reach are skipped."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -40,7 +39,7 @@ def results_figures(case, result, problem, kind_figures: Callable[[str], list[Pa
         paths.append(save_figure(fig, folder / name, note, tight))
 
     peak, base = result.peak, result.tensioned
-    P_peak = result.peak_step.load if result.peak_step is not None else 0.0
+    at_peak = kind.load_text(result.peak_step.load if result.peak_step is not None else 0.0)
     if peak is not None:
         fig, axes = plt.subplots(n_layers, 1, figsize=(9, 2.2 * n_layers), sharex=True)
         for i, ax in enumerate(np.atleast_1d(axes)):
@@ -53,9 +52,7 @@ def results_figures(case, result, problem, kind_figures: Callable[[str], list[Pa
         cb = fig.colorbar(sc, ax=axes, ticks=range(8))
         cb.ax.set_yticklabels([f"{-180 + 45 * k}…{-135 + 45 * k}°" for k in range(8)])
         cb.set_label("sector of φ (90° = stretched fibre)")
-        fig.suptitle(
-            f"wire axial forces at P = {P_peak / 1e3:.2f} kN, T = {case.load.tension / 1e3:g} kN"
-        )
+        fig.suptitle(f"wire axial forces at {at_peak}, T = {case.load.tension / 1e3:g} kN")
         save_fig(fig, "axial_force_sectors.png", tight=False)
 
     if peak is not None and base is not None:
@@ -73,16 +70,16 @@ def results_figures(case, result, problem, kind_figures: Callable[[str], list[Pa
         np.atleast_1d(axes)[0].set_ylabel("ΔN (N)")
         fig.colorbar(sc, ax=axes, label="z (mm)", pad=0.01)
         fig.suptitle(
-            f"change of wire axial force from the tensioned state to P = {P_peak / 1e3:.2f} kN\n"
+            f"change of wire axial force from the tensioned state to {at_peak}\n"
             f"(elements within ±{0.1 * L * 1e3:g} mm of midspan)"
         )
         save_fig(fig, "axial_force_change.png", tight=False)
 
-    paths += kind_figures(note)
+    paths += kind.figures(case, result, note)
 
     if peak is not None and result.peak_w is not None:
         paths.append(deformed_picture(case, result, problem, folder / "deformed_axial_force.png",
-                                      note))  # fmt: skip
+                                      at_peak, note))  # fmt: skip
     return paths
 
 
@@ -120,13 +117,14 @@ def magnification(largest: float, size: float) -> float:
     return float(max(f * decade for f in (1, 2, 5) if f * decade <= target))
 
 
-def deformed_picture(case, result, problem, path, note: str = "") -> Path:
+def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") -> Path:
     """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
     at the largest load and coloured by wire axial force, seen across the load. Displacements are
     magnified (``magnification``: the largest across the strand's axis shown as up to half the
     strand's diameter), the factor in the title (two lines, shrunk to fit the picture:
     ``fit_text``); two rulers give the scale: z along the strand (mm, true scale) under it, and
-    beyond its right end the deflection (mm, as magnified) down from the undeformed axis."""
+    beyond its right end the deflection (mm, as magnified) down from the undeformed axis.
+    ``at_peak``: the largest load as the title gives it (``SetupKind.load_text``)."""
     import pyvista
 
     g = problem.geometry
@@ -156,7 +154,7 @@ def deformed_picture(case, result, problem, path, note: str = "") -> Path:
     shown_as = f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"
     title = plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
-        f"midspan\nat P = {P / 1e3:.2f} kN (downwards), T = {case.load.tension / 1e3:g} kN; "
+        f"midspan\nat {at_peak} (downwards), T = {case.load.tension / 1e3:g} kN; "
         f"{shown_as}",
         position=(0.5, 0.97), viewport=True, font_size=12, color="black", name="title",
     )  # fmt: skip

@@ -33,6 +33,7 @@ from ..model.parallel import root_stream
 from .build import build_problem as build_problem
 from .build import check_folder, restart_from, results_folder
 from .build import setup_and_programme as setup_and_programme
+from .kinds import SetupKind, kind_of
 from .run_result import RunResult as RunResult
 from .run_result import Start as Start
 from .runner import run_programme_with_outputs
@@ -49,12 +50,15 @@ def run_case(
     stream=None,
     overwrite: bool = False,
     restart: str | Path | None = None,
+    *,
+    kind: SetupKind | None = None,
 ) -> RunResult:
     """Run ``case``; outputs go to ``folder`` (default: the case's output folder), which must be
     new or empty, or hold an earlier run to be replaced with ``overwrite`` (``FolderError``
     otherwise, raised before any computing). ``restart``: a checkpoint (``checkpoint.h5`` of an
     earlier run of the same strand) to continue from, with this case's load programme; the new
-    folder's first step is the checkpoint's state."""
+    folder's first step is the checkpoint's state. ``kind``: the case's set-up kind (None:
+    ``kinds.kind_of(case)``), resolved once here and carried through the run."""
     stream = root_stream(stream or sys.stdout)  # printed once in a distributed run
     t_start = time.perf_counter()
     checkpoint = None
@@ -62,13 +66,16 @@ def run_case(
         checkpoint = read_checkpoint(restart)
     folder = folder or case.output.folder
     check_folder(case, folder, overwrite)  # refused before anything is built
-    problem, programme = build_problem(case, stream)
+    kind = kind_of(case) if kind is None else kind
+    problem, programme = build_problem(case, stream, kind=kind)
     try:
         start = (
             None if checkpoint is None else restart_from(problem, programme, checkpoint, restart)
         )
         # written once the strand is built and restored: a case that cannot be leaves it be
         folder = results_folder(case, folder, overwrite, restart)
-        return run_programme_with_outputs(case, problem, programme, folder, stream, start, t_start)
+        return run_programme_with_outputs(
+            case, problem, programme, folder, stream, start, t_start, kind=kind
+        )
     finally:
         problem.solver.destroy()

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from functools import partial
 from pathlib import Path
 
 from ..model.parallel import is_root
@@ -23,7 +22,7 @@ from ..model.reactions import ReactionGauge
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
 from .fatigue.recorders import PairHistory, WireSectionHistory
-from .kinds import kind_of
+from .kinds import SetupKind, kind_of
 from .recorders import (
     AxialForceTable,
     BendingTable,
@@ -80,7 +79,7 @@ class Progress:
 
 def case_recorders(
     case: Case, problem: StrandProblem, folder: Path, parameter: str, key_states: KeyStates,
-    evaluator: CellEvaluator, stream, warnings: list[str], fresh: bool = True,
+    evaluator: CellEvaluator, stream, *, warnings: list[str], fresh: bool = True,
 ) -> list[Recorder]:  # fmt: skip
     """The recorders the case's settings ask for, writing into ``folder``; ``parameter``: the
     cycle's load parameter; ``fresh``: the run starts from the unloaded strand (its field
@@ -114,26 +113,27 @@ class Recording:
     (``run_programme``'s callback) records it into ``result`` and every recorder.
 
     Args:
+        kind: the case's set-up kind, as the run resolved it (``kinds.kind_of``).
         keep: the steps after which the state is kept in memory as ``result.kept``.
         fresh: the run starts from the unloaded strand (not from a ``Start``).
     """
 
     def __init__(
-        self, case: Case, problem: StrandProblem, programme: LoadProgramme, result: RunResult,
-        stream, keep: Callable[[RunStep], bool] | None = None, fresh: bool = True,
+        self, case: Case, kind: SetupKind, problem: StrandProblem, programme: LoadProgramme,
+        result: RunResult, stream, *, keep: Callable[[RunStep], bool] | None = None,
+        fresh: bool = True,
     ):  # fmt: skip
         self.problem, self.programme, self.result, self.keep = problem, programme, result, keep
-        self.case, self.stream = case, stream
+        self.case, self.kind, self.stream = case, kind, stream
         self.evaluator = CellEvaluator(problem.model)
         self.key_states = KeyStates()
         self.recorders = case_recorders(
             case, problem, result.folder, programme.cycle_parameter, self.key_states,
-            self.evaluator, stream, result.warnings, fresh,
+            self.evaluator, stream, warnings=result.warnings, fresh=fresh,
         )  # fmt: skip
         self.bending = next(r for r in self.recorders if isinstance(r, BendingTable))
         self.slip = next(r for r in self.recorders if isinstance(r, SlipTable))
         self.steps_table = next(r for r in self.recorders if isinstance(r, StepTable))
-        kind = kind_of(case)
         units = {"tension": ("kN", 1e3), kind.parameter: kind.progress_unit}
         self.progress = Progress(programme, units, stream)
         self.seconds = 0.0  # wall time of all recorders together
@@ -212,15 +212,21 @@ def run_programme_with_outputs(
     stream,
     start: Start | None = None,
     t_start: float | None = None,
+    *,
     keep: Callable[[RunStep], bool] | None = None,
+    kind: SetupKind | None = None,
 ) -> RunResult:
     """Take ``problem`` through ``programme`` (from ``start``, or from the beginning) with the
     case's recorders writing into ``folder``, then write the summary, fatigue report and
     figures. ``keep(step)``: the steps after which the state is kept in memory as
-    ``RunResult.kept`` (a ``Checkpoint``; the last such step's)."""
+    ``RunResult.kept`` (a ``Checkpoint``; the last such step's). ``kind``: the case's set-up
+    kind, as the run resolved it (None: resolved here, for a caller that starts from the case)."""
     t_start = time.perf_counter() if t_start is None else t_start
+    kind = kind_of(case) if kind is None else kind
     result = RunResult(folder, cycle_parameter=programme.cycle_parameter)
-    recording = Recording(case, problem, programme, result, stream, keep, fresh=start is None)
+    recording = Recording(
+        case, kind, problem, programme, result, stream, keep=keep, fresh=start is None
+    )
     result.setup_seconds = time.perf_counter() - t_start
     _take_programme(problem, programme, recording, start, stream)
     keys = recording.key_states
@@ -229,7 +235,6 @@ def run_programme_with_outputs(
     result.tension_end, result.tension_end_pairs = keys.tension_end, keys.tension_end_pairs
     result.bending, result.slip = recording.bending.rows, recording.slip.rows
     result.reactions = recording.steps_table.reactions
-    kind = kind_of(case)
     result.reference = kind.reference(case, result)
     result.seconds = time.perf_counter() - t_start
     result.timings = dict(problem.solver.timings, output=recording.seconds)
@@ -281,29 +286,29 @@ def _report_and_figures(
     report = None
     if case.fatigue.outputs and len(result.cycle_steps):
         seconds = recording.seconds_of(PairHistory, WireSectionHistory)
-        report = run_fatigue_report(case, result, seconds, stream)
+        report = run_fatigue_report(case, result, seconds, stream, clamp=recording.kind.clamp)
         result.fatigue = report
     if case.output.plots:
         from .plots import fatigue_figures, results_figures
 
-        paths = results_figures(case, result, problem, partial(kind_of(case).figures, case, result))
+        paths = results_figures(case, result, problem, recording.kind)
         if report is not None:
             paths += fatigue_figures(result.folder, report)
         for path in paths:
             print(f"figure: {path}", file=stream)
 
 
-def run_fatigue_report(case: Case, result: RunResult, recording: float, stream):
+def run_fatigue_report(case: Case, result: RunResult, recording: float, stream, *, clamp: bool):
     """The fatigue report of the run's histories (``strand.app.fatigue.report``): ``fatigue.txt``
     and the CSV files, with the cost of the histories (``recording`` s) and the report beside the
-    run's."""
+    run's; ``clamp``: the set-up clamps the strand at z = 0 (``SetupKind.clamp``)."""
     from .fatigue.report import ReportError, fatigue_report
 
     t0 = time.perf_counter()
     try:
         report = fatigue_report(
             result.folder, case.cable, case.load.tension, case.fatigue, case.load.direction,
-            clamp=kind_of(case).clamp,
+            clamp=clamp,
         )  # fmt: skip
     except ReportError as e:
         print(f"strand: no fatigue report: {e}", file=stream, flush=True)

@@ -21,13 +21,13 @@ from ..model.parallel import is_root, on_root, root_stream
 from ..model.programme import LoadProgramme, Position
 from .build import (
     build_problem,
-    check_folder,
     results_folder,
     settings_text,
     setup_and_programme,
 )
-from .folder import FolderError, check_writable, writable_folder
-from .kinds import kind_of
+from .case import check_loads_given
+from .folder import FolderError, check_results_folder, check_writable, writable_folder
+from .kinds import SetupKind, kind_of
 from .run_result import RunResult, Start
 from .runner import run_programme_with_outputs
 from .settings import Case
@@ -49,10 +49,11 @@ def run_sweep(
     parameter = kind.parameter
     names = {a: f"{parameter}_{a:g}" for a in case.load.sweep}
     keys = ["tension", *names.values()]
-    on_root(lambda: _check_sweep_folder(folder, overwrite))  # refused before anything is built
+    check_loads_given(case)  # refused before anything is built, as the folders are
+    on_root(lambda: _check_sweep_folder(folder, overwrite))
     for key in keys:
-        check_folder(case, folder / key, overwrite)
-    problem, programme = build_problem(case, stream)
+        on_root(lambda key=key: check_results_folder(folder / key, overwrite))
+    problem, programme = build_problem(case, stream, kind=kind)
     results = []
     try:
         top = on_root(lambda: _sweep_folder(folder, overwrite, case))  # once the strand is built
@@ -61,27 +62,27 @@ def run_sweep(
         print(f"--- sweep: tension, then {parameter} amplitudes {list(case.load.sweep)} ---",
               file=stream, flush=True)  # fmt: skip
         tensioned = run_programme_with_outputs(
-            case, problem, tension, folders["tension"], stream, keep=lambda s: True
+            case, problem, tension, folders["tension"], stream, keep=lambda s: True, kind=kind
         )
         if tensioned.failure:
             return [tensioned]
         state, last = tensioned.kept, tensioned.steps[-1]
         for amplitude, name in names.items():
             member = kind.with_amplitude(case, amplitude)
-            _, member_programme = setup_and_programme(member)
+            _, member_programme = setup_and_programme(member, kind)
             print(f"--- sweep: {parameter} amplitude {amplitude:g} ---", file=stream, flush=True)
             restore(problem, state)
             start = Start(Position(1, None), last)
             results.append(
                 run_programme_with_outputs(
-                    member, problem, member_programme, folders[name], stream, start
+                    member, problem, member_programme, folders[name], stream, start, kind=kind
                 )  # fmt: skip
             )
             if results[-1].interrupted:
                 break
     finally:
         problem.solver.destroy()
-    table = sweep_table(case, parameter, problem.setup.units[parameter], results)
+    table = sweep_table(case, kind, problem.setup.units[parameter], results)
     if is_root():
         (top / "sweep.csv").write_text(table.csv)
         (top / "sweep.txt").write_text(
@@ -132,12 +133,12 @@ class SweepTable:
     csv: str
 
 
-def sweep_table(case: Case, parameter: str, unit: str, results: list[RunResult]) -> SweepTable:
-    """One row per amplitude (of ``parameter``, in ``unit`` as in column names): its effort,
-    what the set-up measured at the peak and back at zero load (the kind's ``measure``) and,
-    where the members have a fatigue report, its ``fatigue_columns``."""
+def sweep_table(case: Case, kind: SetupKind, unit: str, results: list[RunResult]) -> SweepTable:
+    """One row per amplitude (of the ``kind``'s parameter, in ``unit`` as in column names): its
+    effort, what the set-up measured at the peak and back at zero load (the kind's ``measure``)
+    and, where the members have a fatigue report, its ``fatigue_columns``."""
     head = [f"amplitude_{unit}", "steps", "iterations", "cuts", "seconds"]
-    measure = kind_of(case).measure
+    parameter, measure = kind.parameter, kind.measure
     head += [f"peak_{measure}", f"unloaded_{measure}", "outcome"]
     fatigue = [fatigue_columns(r.fatigue, len(case.cable.layers)) for r in results]
     names = next((list(f) for f in fatigue if f), [])

@@ -98,6 +98,7 @@ class ContactGroup(PairGroup):
         radius_b,
         normal0,
         normal_law: NormalLaw,
+        *,
         friction_law: FrictionLaw | None,
         normal: str,
         tangent0=None,

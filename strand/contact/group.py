@@ -166,7 +166,7 @@ class PairGroup:
             S, dq = kin.slip()
             ft = self.friction_law.terms(
                 S, dq, p, dp_dg[:, None] * G, self._p_old, self._t_old, self._n_old,
-                self.normal_law, jacobian,
+                normal=self.normal_law, jacobian=jacobian,
             )  # fmt: skip
             m = S.shape[2]
             f[:, :m] += ft.residual

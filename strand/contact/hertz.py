@@ -90,7 +90,7 @@ def mindlin_ratio(E1, nu1, E2, nu2) -> Array:
     return 4 * (compliance(E1, nu1) + compliance(E2, nu2)) / ((2 - nu1) / g1 + (2 - nu2) / g2)
 
 
-def contact_ellipse(r1, r2, beta, E1, nu1, E2, nu2, force) -> tuple[Array, Array, Array]:
+def contact_ellipse(r1, r2, beta, E1, nu1, E2, nu2, *, force) -> tuple[Array, Array, Array]:
     """Hertz contact of crossed cylinders under a normal ``force`` P (N): the semi-axes a ≥ b (m)
     and the peak pressure p₀ = 3P/(2πab) (Pa) (Hamrock–Brewe fits; exact for a sphere on a
     flat). Zero where P ≤ 0."""

@@ -354,7 +354,7 @@ class FrictionLaw(ABC):
         """K_T (P,) in N/m from the normal forces at the start of the step."""
 
     def terms(
-        self, S, dq, p, dp_dq, p_old, t_old, n_old, normal: NormalLaw, jacobian: bool
+        self, S, dq, p, dp_dq, p_old, t_old, n_old, *, normal: NormalLaw, jacobian: bool
     ) -> FrictionTerms:
         """Friction of all pairs on a slip operator S (P, 3, m): Δg_T = S Δq.
 
@@ -398,7 +398,7 @@ class Mindlin(FrictionLaw):
 
 
 def hertz_mindlin(
-    line: bool, radius_a, radius_b, crossing_angle, tributary, E_a, nu_a, E_b, nu_b, mu=None
+    line: bool, radius_a, radius_b, crossing_angle, tributary, *, E_a, nu_a, E_b, nu_b, mu=None
 ) -> tuple[NormalLaw, FrictionLaw | None]:
     """The laws of elastic wires in contact, from their radii (m) and moduli (Pa) alone.
 

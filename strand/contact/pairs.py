@@ -142,6 +142,7 @@ def node_pairs(
     b,
     radius_a,
     radius_b,
+    *,
     line: bool = False,
     initial_gap=None,
     tributary=None,
@@ -226,6 +227,7 @@ def candidate_pairs(
     radius_a: float,
     radius_b: float,
     reach: float,
+    *,
     line: bool = False,
     initial_gap=None,
 ) -> NodePairs:
@@ -265,7 +267,7 @@ def candidate_pairs(
         return np.unique(np.concatenate(comm.allgather(mine))) if comm.size > 1 else mine
 
     table = candidate_stencils(
-        points, cells, inputs(beam_a), inputs(beam_b), radius_a, radius_b, reach, line
+        points, cells, inputs(beam_a), inputs(beam_b), radius_a, radius_b, reach, line=line
     )
     blocks = to_block[table]
     n_owned = V.dofmap.index_map.size_local
@@ -283,7 +285,7 @@ def candidate_pairs(
 
 
 def candidate_stencils(
-    points, cells, beam_a, beam_b, radius_a: float, radius_b: float, reach: float,
+    points, cells, beam_a, beam_b, radius_a: float, radius_b: float, reach: float, *,
     line: bool = False,
 ) -> npt.NDArray[np.int64]:  # fmt: skip
     """``candidate_pairs`` on a mesh's input arrays, before it is built or distributed: the
@@ -376,9 +378,9 @@ def contact_terms(
         pairs.radius_b,
         pairs.normal,
         normal_law,
-        friction_law,
-        normal,
-        pairs.tangents,
+        friction_law=friction_law,
+        normal=normal,
+        tangent0=pairs.tangents,
         index=pairs.index,
         initial_gap=pairs.initial_gap,
         slip=slip,
@@ -394,5 +396,5 @@ def hertz_laws(
     Material values may be one for all or one per pair (``laws.hertz_mindlin``)."""
     return hertz_mindlin(
         pairs.line, pairs.radius_a, pairs.radius_b, pairs.crossing_angle, pairs.tributary,
-        E_a, nu_a, E_b, nu_b, mu,
+        E_a=E_a, nu_a=nu_a, E_b=E_b, nu_b=nu_b, mu=mu,
     )  # fmt: skip

@@ -114,6 +114,7 @@ class SegmentGroup(PairGroup):
         radius_b,
         normal0,
         normal_law: NormalLaw,
+        *,
         friction_law: FrictionLaw | None,
         initial_gap=None,
         index=None,

@@ -90,9 +90,9 @@ class SlidingGroup(PairGroup):
     TOUCH = 1e-15
 
     def __init__(self, stencils, initial_positions, na: int, line: bool, start,
-                 normal_law: NormalLaw, friction_law: FrictionLaw | None, index=None,
-                 wire_end=None, radius_a=0.0, radius_b=0.0, start_parameters=None, *,
-                 tangents, initial_gap=None, slip: str = "surface"):  # fmt: skip
+                 normal_law: NormalLaw, *, friction_law: FrictionLaw | None, tangents,
+                 index=None, wire_end=None, radius_a=0.0, radius_b=0.0, start_parameters=None,
+                 initial_gap=None, slip: str = "surface"):  # fmt: skip
         self.slip = check_slip(slip)
         n_pairs, k = np.shape(stencils)
         # the initial normal is known once the closest points are: set below

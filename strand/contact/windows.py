@@ -155,6 +155,7 @@ def sliding_group(
     chains: NodeChains,
     normal_law: NormalLaw,
     friction_law: FrictionLaw | None = None,
+    *,
     tangents: npt.ArrayLike | None = None,
     blocks: npt.ArrayLike | None = None,
     weights: npt.ArrayLike | None = None,
@@ -192,7 +193,7 @@ def sliding_group(
     tangents = chains.tangents() if tangents is None else np.asarray(tangents, dtype=float)
     stencils = nodes if blocks is None else np.asarray(blocks)[nodes]
     return SlidingGroup(stencils, chains.positions[nodes], na, pairs.line,
-                        np.column_stack([start_a, start_b]), normal_law, friction_law,
+                        np.column_stack([start_a, start_b]), normal_law, friction_law=friction_law,
                         index=pairs.index, wire_end=windows.ends,
                         radius_a=pairs.radius_a, radius_b=pairs.radius_b,
                         start_parameters=start_parameters, tangents=tangents[nodes],
@@ -237,6 +238,7 @@ def sliding_terms(
     reach: float,
     normal_law: NormalLaw,
     friction_law: FrictionLaw | None = None,
+    *,
     tangents: npt.ArrayLike | None = None,
     slip: str = "surface",
 ) -> list[SlidingGroup]:
@@ -261,7 +263,12 @@ def sliding_terms(
         laws = (_law_rows(law, windows.rows, len(pairs)) for law in (normal_law, friction_law))
         groups.append(
             sliding_group(
-                pairs.select(windows.rows), windows, node_chains, *laws, tangents, slip=slip
+                pairs.select(windows.rows),
+                windows,
+                node_chains,
+                *laws,
+                tangents=tangents,
+                slip=slip,
             )
         )
     return groups

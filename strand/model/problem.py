@@ -1,9 +1,9 @@
 """A strand problem: the model (wires and contact), a test set-up (supports, loads, measures) and
 the nonlinear problem (``strand.solver.NonlinearProblem``) that ties them together.
 
-``StrandProblem(geometry, contact, options)`` is the seed paper's saddle test; pass ``setup`` (a
-callable taking the ``StrandModel``, e.g. ``functools.partial(UniformBendingTest, zone=0.4)``) for
-another. Units: m, N, Pa.
+``StrandProblem(geometry, contact, options, setup=SaddleTest)`` is the seed paper's saddle test;
+``setup`` (a callable taking the ``StrandModel``, e.g. ``functools.partial(UniformBendingTest,
+zone=0.4)``) names the test, and has no default. Units: m, N, Pa.
 """
 
 from __future__ import annotations
@@ -18,7 +18,6 @@ from petsc4py import PETSc
 
 from ..cable.geometry import StrandGeometry
 from ..setups.base import TestSetup
-from ..setups.saddle import SaddleTest
 from ..solver import NewtonOptions, NonlinearProblem
 from ..solver.convergence import STALL_AFTER
 from ..solver.ordering import ORDERINGS, cheapest_ordering
@@ -43,7 +42,7 @@ class StrandProblem:
         geometry: the strand (``build_geometry``).
         contact: contact settings (normal, penalties, friction).
         options: Newton settings (a ``stall_after`` of None takes strand's ``STALL_AFTER``).
-        setup: builds the test set-up from the model (default: ``SaddleTest``).
+        setup: builds the test set-up from the model (e.g. ``strand.setups.SaddleTest``).
     """
 
     def __init__(
@@ -51,7 +50,8 @@ class StrandProblem:
         geometry: StrandGeometry,
         contact: ContactSettings | None = None,
         options: NewtonOptions | None = None,
-        setup: Callable[[StrandModel], TestSetup] = SaddleTest,
+        *,
+        setup: Callable[[StrandModel], TestSetup],
         comm: MPI.Comm = MPI.COMM_WORLD,
         monitor=None,
     ):

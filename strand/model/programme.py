@@ -84,7 +84,7 @@ class LoadProgramme:
 
 
 def cycle_stages(
-    parameter: str, amplitude: float, cycle, first_step: float, max_step: float, cuts: int,
+    parameter: str, amplitude: float, cycle, first_step: float, max_step: float, *, cuts: int,
     growth: float, predictor: bool = True,
 ) -> list[Stage]:  # fmt: skip
     """Legs ``leg 1, leg 2, …`` to the targets ``cycle`` × ``amplitude``; every leg starts with

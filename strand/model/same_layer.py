@@ -250,7 +250,7 @@ def same_layer_groups(
         return [
             ContactGroup(
                 input_to_block[pairs.stencils[rows]], geometry.points[np.column_stack([c, a])],
-                True, radius, radius, -pairs.normal[rows], law, friction, "director",
+                True, radius, radius, -pairs.normal[rows], law, friction_law=friction, normal="director",
                 tangent0=np.stack([tangents[c], tangents[a]], axis=1), index=rows,
                 initial_gap=pairs.gap[rows], offset=pairs.offset[rows],
             )
@@ -258,7 +258,7 @@ def same_layer_groups(
     return [
         SegmentGroup(
             input_to_block[pairs.stencils[rows]], pairs.weight[rows], radius, radius,
-            pairs.normal[rows], law, friction, initial_gap=pairs.gap[rows], index=rows,
+            pairs.normal[rows], law, friction_law=friction, initial_gap=pairs.gap[rows], index=rows,
             normal="neighbour", initial_positions=geometry.points[pairs.stencils[rows]],
         )
     ]  # fmt: skip

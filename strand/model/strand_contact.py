@@ -129,7 +129,7 @@ def pair_laws(
     E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
     return hertz_mindlin(
         line, pairs.radius_a[sel], pairs.radius_b[sel], crossing_angle(tangents), pairs.tributary[sel],
-        E_a, nu_a, E_b, nu_b, mu if settings.friction else None,
+        E_a=E_a, nu_a=nu_a, E_b=E_b, nu_b=nu_b, mu=mu if settings.friction else None,
     )  # fmt: skip
 
 

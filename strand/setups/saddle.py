@@ -250,7 +250,7 @@ class SaddleTest(TestSetup):
             self._driver = DisplacementControl(
                 solver, lambda: self.lateral, self.set_lateral, self.measured_displacement,
                 lambda: self._prescribed * control.per_unit, self.reference_stiffness,
-                control.tolerance,
+                tolerance=control.tolerance,
             )  # fmt: skip
         else:
             self._driver.start()

@@ -54,6 +54,7 @@ class DisplacementControl:
         measure: Callable[[], float],
         prescribed: Callable[[], float],
         stiffness: Callable[[], float],
+        *,
         tolerance: float,
         max_solves: int = 8,
     ):

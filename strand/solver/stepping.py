@@ -169,6 +169,7 @@ class LoadStepper:
         first_step: float,
         min_step: float,
         max_step: float | None = None,
+        *,
         growth: float = 1.5,
         easy_iterations: int = 6,
         on_step: Callable[[StepRecord], None] | None = None,

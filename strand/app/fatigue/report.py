@@ -139,7 +139,7 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curves: li
     beta = np.radians(st["crossing_angle"])
     # Hertz at every cycle's peak force: (C, P)
     a, b, p0 = contact_ellipse(st["radius_a"], st["radius_b"], beta, E_a, nu_a, E_b, nu_b,
-                               cc.peak_force)  # fmt: skip
+                               force=cc.peak_force)  # fmt: skip
     length = st["tributary"]
     q = np.divide(cc.peak_force, length, out=np.zeros_like(cc.peak_force), where=length > 0)
     half, p0_line = line_contact(st["radius_a"], st["radius_b"], E_a, nu_a, E_b, nu_b, q)

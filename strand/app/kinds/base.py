@@ -40,7 +40,9 @@ class SetupKind(ABC):
             default its amplitude is the ``[load]`` setting of that name and its first and
             largest increments the ``[steps]`` settings ``<parameter>`` and ``<parameter>_max``.
         unit: the parameter's SI unit in texts ("N").
-        progress_unit: the parameter's (label, scale) on the progress lines (("kN", 1e3)).
+        progress_unit: the parameter's (label, scale) on the progress lines (("kN", 1e3)), and
+            in figure titles (``load_text``).
+        symbol: the parameter's symbol in figure titles ("P"; "": its name).
         measure: the field of its set-up's ``state()`` a sweep reports at the peak and back at
             zero load.
         load_settings, step_settings: frozen dataclasses of its own ``[load]`` and ``[steps]``
@@ -55,11 +57,17 @@ class SetupKind(ABC):
     parameter: str = ""
     unit: str = ""
     progress_unit: tuple[str, float] = ("", 1.0)
+    symbol: str = ""
     measure: str = ""
     load_settings: type = NoSettings
     step_settings: type = NoSettings
     signed: frozenset[str] = frozenset()
     clamp: bool = False
+
+    def load_text(self, value: float) -> str:
+        """A value of the cycled parameter as figure titles give it ("P = 4.30 kN")."""
+        label, scale = self.progress_unit
+        return f"{self.symbol or self.parameter} = {value / scale:.2f} {label}"
 
     def load(self, case: Case) -> Any:
         """This kind's own ``[load]`` settings in ``case`` (a ``load_settings``)."""
@@ -127,8 +135,8 @@ def tension_then_cycle(
     """Tension to ``load.tension``, then the legs ``load.cycle`` × ``amplitude`` of ``parameter``,
     each starting with increment ``first``, growing up to ``largest``."""
     steps = case.steps
-    legs = cycle_stages(parameter, amplitude, case.load.cycle, first, largest, steps.cuts,
-                        steps.growth, steps.predictor)  # fmt: skip
+    legs = cycle_stages(parameter, amplitude, case.load.cycle, first, largest, cuts=steps.cuts,
+                        growth=steps.growth, predictor=steps.predictor)  # fmt: skip
     return LoadProgramme((tension_stage(case), *legs), parameter)
 
 

@@ -66,11 +66,16 @@ class UniformBending(SetupKind):
     parameter = "curvature"
     unit = "1/m"
     progress_unit = ("1/m", 1.0)
+    symbol = "κ"
     measure = "curvature"
     load_settings = BendingLoad
     step_settings = BendingSteps
     signed = frozenset({"curvature"})
     clamp = False
+
+    def load_text(self, value: float) -> str:
+        """A curvature as figure titles give it ("κ = 0.0125 1/m")."""
+        return f"κ = {value:.3g} 1/m"
 
     def check_case(self, case: Case) -> None:
         zone, length = self.load(case).zone, case.mesh.length

@@ -102,6 +102,7 @@ class Saddle(SetupKind):
     parameter = "lateral"
     unit = "N"
     progress_unit = ("kN", 1e3)
+    symbol = "P"
     measure = "deflection"
     load_settings = SaddleLoad
     step_settings = SaddleSteps
@@ -215,6 +216,7 @@ class SaddleDisplacement(Saddle):
 
     unit = "m"
     progress_unit = ("mm", 1e-3)
+    symbol = ""  # the parameter's name: deflection or yb
     measure = "lateral"
 
     def __init__(self, parameter: str):

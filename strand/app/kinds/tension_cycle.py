@@ -89,6 +89,7 @@ class TensionCycle(SetupKind):
     parameter = "tension_swing"
     unit = "N"
     progress_unit = ("kN", 1e3)
+    symbol = "ΔT"
     measure = "end_displacement"
     load_settings = TensionCycleLoad
     step_settings = TensionCycleSteps
@@ -122,7 +123,8 @@ class TensionCycle(SetupKind):
                                 steps.growth, extrapolate=steps.predictor))  # fmt: skip
         first, largest = self.step_sizes(self.steps(case))
         stages += cycle_stages(self.parameter, self.amplitude(case), load.cycle, first, largest,
-                               steps.cuts, steps.growth, steps.predictor)  # fmt: skip
+                               cuts=steps.cuts, growth=steps.growth,
+                               predictor=steps.predictor)  # fmt: skip
         return LoadProgramme(tuple(stages), self.parameter)
 
     def reference(self, case: Case, result) -> TensionCycleReference | None:

@@ -12,7 +12,7 @@ setup:
 	@bash scripts/bootstrap.sh
 
 run: setup
-	.venv/bin/mpirun -n $(NP) $(PY) -m strand run $(CASE) --overwrite $(ARGS)
+	.venv/bin/mpirun -n $(NP) $(PY) -m strand.app run $(CASE) --overwrite $(ARGS)
 
 test: lint
 	$(PY) -m pytest -n auto --dist worksteal

@@ -81,7 +81,7 @@ def record_demo(demo: Path) -> None:
 def record_outputs() -> None:
     target = STATIC / "outputs"
     with tempfile.TemporaryDirectory() as tmp:
-        run = [sys.executable, "-m", "strand", "run", str(ROOT / "cases" / "quick_1x6.toml")]
+        run = [sys.executable, "-m", "strand.app", "run", str(ROOT / "cases" / "quick_1x6.toml")]
         subprocess.run([*run, "--out", f"{tmp}/run"], cwd=tmp, check=True)
         shutil.rmtree(target, ignore_errors=True)
         target.mkdir(parents=True)

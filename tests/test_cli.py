@@ -93,7 +93,7 @@ def test_run_help_lists_every_setting_of_every_section():
     from strand.app.settings import KIND_SECTIONS, SECTIONS
     from strand.app.settings_reference import default_toml
 
-    done = subprocess.run([sys.executable, "-m", "strand", "run", "--help"],
+    done = subprocess.run([sys.executable, "-m", "strand.app", "run", "--help"],
                           capture_output=True, text=True, timeout=120)  # fmt: skip
     assert done.returncode == 0, done.stderr
     text = done.stdout
@@ -215,7 +215,7 @@ def test_ctrl_c_stops_at_the_last_converged_step_and_keeps_everything(tmp_path):
                     .replace("plots = false", "plots = true\nfields = false"))  # fmt: skip
     out = tmp_path / "out"
     run = subprocess.Popen(
-        [sys.executable, "-m", "strand", "run", str(case), "--out", str(out)],
+        [sys.executable, "-m", "strand.app", "run", str(case), "--out", str(out)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path,
     )  # fmt: skip
     lines = []

@@ -30,7 +30,7 @@ NOT_RESULTS = {"stage", "seconds", "residual_N"}
 
 
 def strand_run(ranks: int, args: list[str], cwd: Path) -> subprocess.CompletedProcess:
-    cmd = [sys.executable, "-m", "strand", *args]
+    cmd = [sys.executable, "-m", "strand.app", *args]
     if ranks > 1:
         cmd = [str(MPIRUN), "-n", str(ranks), *cmd]
     return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=600)

@@ -89,7 +89,7 @@ def test_a_serial_checkpoint_continues_on_two_ranks(seven, tmp_path):
     out = tmp_path / "continued"
     args = ["run", str(seven), "--restart", str(checkpoint), "--out", str(out)]
     args += [a for s in QUIET for a in ("--set", s)]
-    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, "-m", "strand", *args],
+    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, "-m", "strand.app", *args],
                           capture_output=True, text=True, timeout=300)  # fmt: skip
     assert done.returncode == 0, done.stderr[-2000:]
     assert_continues(tmp_path / "whole", out, 7, 1e-8)  # LU round-off of another distribution

@@ -185,7 +185,7 @@ def test_y_b_control_is_the_same_on_2_ranks(case_file):
     args = [x for s in sets for x in ("--set", s)]
     serial = run(case_file, "serial", *sets)
     out = case_file.parent / "two_ranks"
-    cmd = [str(MPIRUN), "-n", "2", sys.executable, "-m", "strand", "run", str(case_file),
+    cmd = [str(MPIRUN), "-n", "2", sys.executable, "-m", "strand.app", "run", str(case_file),
            "--out", str(out), *args]  # fmt: skip
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr[-2000:]

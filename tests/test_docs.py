@@ -112,10 +112,10 @@ def test_the_settings_reference_lists_every_setting_with_its_default(built):
 
 
 def test_the_outputs_reference_names_every_file_a_run_writes():
-    from strand.app.run_files import OUTPUTS
+    from strand.app.run_files import outputs
 
     text = (DOCS / "outputs.md").read_text()
-    assert [name for name in OUTPUTS if f"`{name}`" not in text] == []
+    assert [name for name in outputs() if f"`{name}`" not in text] == []
 
 
 def test_every_demo_is_a_tutorial_with_its_maths(built):
@@ -172,9 +172,9 @@ def test_the_recorded_results_are_those_of_the_demos_as_they_are():
 
 def test_the_outputs_reference_shows_every_figure_a_run_draws(built):
     """Each figure a run draws, the quick case's, beside its description."""
-    from strand.app.run_files import OUTPUTS
+    from strand.app.run_files import outputs
 
-    figures = {name for name in OUTPUTS if name.endswith(".png")}
+    figures = {name for name in outputs() if name.endswith(".png")}
     page = built / "outputs.html"
     assert figures <= {i.name for i in _images(page)}
     for name in figures:  # under it, a caption that names it and says what it shows

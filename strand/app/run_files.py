@@ -8,39 +8,21 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["OUTPUTS", "OUTPUTS_REFERENCE", "folder_readme", "write_folder_readme"]
+from .outputs import registered_outputs
+
+__all__ = ["OUTPUTS", "OUTPUTS_REFERENCE", "outputs", "folder_readme", "write_folder_readme"]
 
 #: where every file, column and unit is described
 OUTPUTS_REFERENCE = "docs/outputs.md"
 
-#: what each file a run may write holds (the set-up kind, the settings and the outcome decide
-#: which are there)
+#: what each file a run writes outside its recorders holds (the set-up kind, the settings and the
+#: outcome decide which are there); the recorders' files: ``outputs``
 OUTPUTS = {
     "case.toml": "the whole case of the run, every setting and the cable written out, with the "
     "strand version: `strand run case.toml --out <new folder>` runs it again",
     "README.txt": "this list",
     "summary.txt": "the outcome, effort, the tensioned state against the fibre model, the "
     "set-up's own results and any warning",
-    "steps.csv": "one row per converged load step: stage, programme time, loads, the set-up's "
-    "measures, Newton iterations, residual (N), wall time (s)",
-    "axial_forces.csv": "the axial force (N) of every element at every step, with its wire, "
-    "layer, height z (m) and angle",
-    "moment_curvature.csv": "the set-up's section measures (bending moment, curvature, axial "
-    "sum) at every step of the cycle",
-    "slip.csv": "per interface, the share of contact pairs slipping in the measuring zone, at "
-    "every step",
-    "fields.xdmf": "field time series for ParaView (with fields.h5): displacement, rotation, "
-    "section forces, wire and layer ids; time t = k to k + 1 is stage k of steps.csv",
-    "fields.h5": "the data of fields.xdmf",
-    "fields_loads.csv": "the set-up's loads at every frame of the field series (t = 0 the "
-    "unloaded strand, then each step of steps.csv)",
-    "fields.bp": "the same fields as VTX (ADIOS2), a folder: ParaView",
-    "contact_pairs.h5": "every contact pair's history: gap, normal force, traction, slip",
-    "contact_points.xdmf": "the contact pairs' history as points, for ParaView",
-    "wire_sections.h5": "every element's section forces (axial force, bending moments, torque) "
-    "and spin, at the tensioned state and every cycle step",
-    "checkpoint.h5": "the last converged state: `strand run <case> --restart checkpoint.h5`",
-    "tensioned.h5": "the state after tension, before the cycle (a restart point)",
     "fatigue.txt": "the fatigue report: stress ranges, S-N damage, fretting",
     "crossings.csv": "fatigue: per contact pair, the worst cycle's slip amplitude and forces",
     "wire_stresses.csv": "fatigue: per element, the surface stresses at its point of largest "
@@ -57,6 +39,15 @@ OUTPUTS = {
 }
 
 
+def outputs() -> dict[str, str]:
+    """What each file a run may write holds: ``OUTPUTS`` and the files of every registered
+    output (``strand.app.outputs``)."""
+    files = dict(OUTPUTS)
+    for output in registered_outputs():
+        files.update(output.files)
+    return files
+
+
 def folder_readme(folder: str | Path) -> str:
     """The ``README.txt`` of a run's ``folder``: each file and folder at its top, with what it
     holds."""
@@ -69,8 +60,9 @@ def folder_readme(folder: str | Path) -> str:
         f"{OUTPUTS_REFERENCE} in strand's documentation.",
         "",
     ]
+    described = outputs()
     for name in names:
-        what = OUTPUTS.get(name, "a sub-folder: a run of its own" if (folder / name).is_dir()
+        what = described.get(name, "a sub-folder: a run of its own" if (folder / name).is_dir()
                            else "")  # fmt: skip
         lines.append(f"{name:<{width}}  {what}".rstrip())
     return "\n".join(lines) + "\n"

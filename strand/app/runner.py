@@ -18,21 +18,17 @@ from ..model.parallel import is_root
 from ..model.post import CellEvaluator, cell_results
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme
-from ..model.reactions import ReactionGauge
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
 from .fatigue.recorders import PairHistory, WireSectionHistory
 from .kinds import SetupKind, kind_of
+from .outputs import Run, registered_outputs
 from .recorders import (
-    AxialForceTable,
     BendingTable,
-    CheckpointRecorder,
-    FieldSeries,
     KeyStates,
     Recorder,
     RunStep,
     SlipTable,
-    SmallSlidingMonitor,
     StepContext,
     StepTable,
 )
@@ -81,30 +77,20 @@ def case_recorders(
     case: Case, problem: StrandProblem, folder: Path, parameter: str, key_states: KeyStates,
     evaluator: CellEvaluator, stream, *, warnings: list[str], fresh: bool = True,
 ) -> list[Recorder]:  # fmt: skip
-    """The recorders the case's settings ask for, writing into ``folder``; ``parameter``: the
-    cycle's load parameter; ``fresh``: the run starts from the unloaded strand (its field
+    """The recorders of the registered outputs (``outputs``) the case's settings ask for, in
+    the order registered, writing into ``folder``; ``parameter``: the cycle's load parameter;
+    ``fresh``: the run starts from the unloaded strand (its field
     series opens with it at t = 0), not from a restart or a sweep's tensioned state."""
-    su = problem.setup
-    unit = su.units[parameter]
-    recorders = [
-        StepTable(folder, su.state_type, ReactionGauge(problem)),
-        AxialForceTable(folder, parameter, unit),
-        BendingTable(folder, su.bending_type),
-        SlipTable(folder, problem.geometry, su.measuring_zone, parameter, unit),
-        key_states,
-    ]
-    if case.contact.model == "small":
-        recorders.append(SmallSlidingMonitor(problem.model, stream, warnings))
-    if case.output.fields:
-        recorders.append(FieldSeries(folder, problem, vtx=case.output.vtx, initial=fresh))
-    if case.fatigue.outputs:
-        initial = cell_results(problem.model, su.direction, evaluator)
-        recorders += [
-            PairHistory(folder, problem.model, parameter),
-            WireSectionHistory(folder, problem.model, initial, su.direction, parameter),
-        ]
-    if case.output.checkpoint:
-        recorders.append(CheckpointRecorder(folder))
+    run = Run(
+        case=case, problem=problem, folder=Path(folder), parameter=parameter,
+        unit=problem.setup.units[parameter], key_states=key_states, evaluator=evaluator,
+        stream=stream, warnings=warnings, fresh=fresh,
+    )  # fmt: skip
+    recorders: list[Recorder] = []
+    for output in registered_outputs():
+        made = output.make(run)
+        if made is not None:
+            recorders += made if isinstance(made, list) else [made]
     return recorders
 
 

@@ -13,11 +13,10 @@ from typing import ClassVar
 from ..cable.description import CableError
 from ..contact.element import check_slip, resolve_normal
 from ..contact.errors import ContactError
+from .compliances import PENALTY_SETTINGS, compliance_named, compliances
 from .same_layer import SAME_LAYER, SAME_LAYER_STENCILS
 
-__all__ = ["ContactSettings", "COMPLIANCES"]
-
-COMPLIANCES = ("penalty", "hertz")
+__all__ = ["ContactSettings"]
 
 
 @dataclass(frozen=True)
@@ -38,8 +37,10 @@ class ContactSettings:
             current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
             contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
             ``strand.contact.hertz``) or "penalty" (the seed paper's: a penalty K_N, and friction
-            reaching μP after an elastic slip g_lim). k_point, k_line and g_lim apply to "penalty"
-            only. The default has no free parameter: every stiffness follows from the wires.
+            reaching μP after an elastic slip g_lim), or another registered one
+            (``strand.model.compliances.register_compliance``). k_point, k_line and g_lim apply
+            to "penalty" (and any compliance registered as using them) only. The default has no
+            free parameter: every stiffness follows from the wires.
         k_point: penalty stiffness of a crossing, N/m (5e4 N/mm).
         k_line: penalty of the core | layer-1 line contact per metre of layer-1 wire, N/m²; each
             line pair gets k_line × its tributary length.
@@ -94,11 +95,10 @@ class ContactSettings:
             check_slip(self.slip)
         except ContactError as e:  # strand.app.case reports CableError as a [contact] error
             raise CableError(str(e)) from None
-        if self.compliance not in COMPLIANCES:
-            raise CableError(
-                f"contact compliance {self.compliance!r} is unknown; choose "
-                f"{' or '.join(COMPLIANCES)}"
-            )
+        if self.compliance not in compliances():
+            *others, last = compliances()
+            choices = f"{', '.join(others)} or {last}" if others else last
+            raise CableError(f"contact compliance {self.compliance!r} is unknown; choose {choices}")
         if self.model not in ("small", "large"):
             raise CableError(f"contact model {self.model!r} is unknown; choose small or large")
         if self.same_layer == "auto":
@@ -118,11 +118,12 @@ class ContactSettings:
             if not (isinstance(value, int | float) and value > 0):
                 raise CableError(f"contact {name} = {value!r} {self.UNITS[name]}: must be a "
                                  "positive number")  # fmt: skip
-        if self.compliance != "penalty":
-            defaults = {f.name: f.default for f in fields(self)}
-            given = [n for n in ("k_point", "k_line", "g_lim") if getattr(self, n) != defaults[n]]
-            if given:
-                raise CableError(
-                    f'contact {", ".join(given)} apply to compliance = "penalty" only (the '
-                    f"{self.compliance} compliance follows from the wires); set one or the other"
-                )
+        uses = compliance_named(self.compliance).uses
+        defaults = {f.name: f.default for f in fields(self)}
+        given = [n for n in PENALTY_SETTINGS if n not in uses and getattr(self, n) != defaults[n]]
+        if given:
+            users = [f'"{c}"' for c in compliances() if set(given) <= set(compliance_named(c).uses)]
+            raise CableError(
+                f"contact {', '.join(given)} apply to compliance = {' or '.join(users)} only "
+                f"(the {self.compliance} compliance does not read them); set one or the other"
+            )

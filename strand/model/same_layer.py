@@ -54,19 +54,11 @@ import numpy.typing as npt
 from ..cable.description import Layer
 from ..cable.geometry import StrandGeometry
 from ..contact.element import ContactGroup
-from ..contact.hertz import compliance, mindlin_ratio
 from ..contact.kinematics import rotation_matrix
-from ..contact.laws import (
-    ElasticSlip,
-    FrictionLaw,
-    HertzLineLaw,
-    Mindlin,
-    NormalLaw,
-    PenaltyLaw,
-    SmoothOnset,
-)
+from ..contact.laws import FrictionLaw, NormalLaw, SmoothOnset
 from ..contact.pairs import closest_on_segments
 from ..contact.segment import SegmentGroup
+from .compliances import Wires, compliance_named
 from .partition import owned_rows
 
 __all__ = [
@@ -212,19 +204,19 @@ def same_layer_laws(
 ) -> tuple[Array, NormalLaw, FrictionLaw | None]:
     """The wire radii (m) and the laws of the pairs ``rows``: Hertz line contact over their
     tributary lengths and Mindlin friction ("hertz" compliance), or the line penalty ``k_line``
-    and elastic slip ("penalty"); the normal law with a C¹ onset (``SmoothOnset``)."""
+    and elastic slip ("penalty"), or what another registered compliance builds for line pairs
+    (``compliances``); the normal law with a C¹ onset (``SmoothOnset``)."""
     layers = geometry.cable.layers
     wire = [layers[i].wire for i in pairs.layer[rows]]
     radius = np.array([w.diameter / 2 for w in wire])
     mu = np.array([layers[i].friction for i in pairs.layer[rows]])
-    if settings.compliance == "penalty":
-        law: NormalLaw = PenaltyLaw(settings.k_line * pairs.tributary[rows])
-        friction = ElasticSlip(mu, settings.g_lim) if settings.friction else None
-    else:
-        c = np.array([compliance(w.E, w.nu) for w in wire])
-        law = HertzLineLaw(radius, radius, c, c, pairs.tributary[rows])
-        E, nu = np.array([w.E for w in wire]), np.array([w.nu for w in wire])
-        friction = Mindlin(mu, mindlin_ratio(E, nu, E, nu)) if settings.friction else None
+    E, nu = np.array([w.E for w in wire]), np.array([w.nu for w in wire])
+    chosen = Wires(
+        line=True, radius_a=radius, radius_b=radius, E_a=E, nu_a=nu, E_b=E, nu_b=nu,
+        mu=mu if settings.friction else None, tributary=pairs.tributary[rows],
+        angle=np.zeros(len(rows)),
+    )  # fmt: skip
+    law, friction = compliance_named(settings.compliance).build(chosen, settings)
     return radius, SmoothOnset(law), friction
 
 

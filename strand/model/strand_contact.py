@@ -19,11 +19,12 @@ import numpy.typing as npt
 
 from ..cable.geometry import LINE, POINT, StrandGeometry
 from ..contact.element import ContactGroup
-from ..contact.laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
+from ..contact.laws import FrictionLaw, NormalLaw
 from ..contact.measure import segment_distance
 from ..contact.pairs import NodePairs, contact_terms, crossing_angle
 from ..contact.sliding import SlidingGroup
 from ..contact.windows import NodeChains, SlidingWindows, chain_windows, sliding_group
+from .compliances import Wires, compliance_named
 from .contact_settings import ContactSettings
 from .partition import DistributionError, owned_rows
 from .same_layer import SameLayerPairs, same_layer_laws
@@ -112,25 +113,24 @@ def contact_groups(
 def pair_laws(
     geometry: StrandGeometry, sel, settings: ContactSettings, tangents
 ) -> tuple[NormalLaw, FrictionLaw | None]:
-    """The normal and friction laws of the geometry's pairs ``sel`` (all of one kind).
+    """The normal and friction laws of the geometry's pairs ``sel`` (all of one kind), from the
+    compliance ``settings`` name (``compliances``).
 
     ``tangents`` (P, 2, 3): the initial unit tangents of the wires at a and b (their crossing
     angle sizes a Hertz contact).
     """
     pairs = geometry.pairs
-    line = bool(np.all(pairs.kind[sel] == LINE))
-    mu = pairs.friction[sel] if settings.friction else np.zeros(len(sel))
-    if settings.compliance == "penalty":
-        k = settings.k_line * pairs.tributary[sel] if line else np.full(len(sel), settings.k_point)
-        return PenaltyLaw(k), ElasticSlip(mu, settings.g_lim) if settings.friction else None
     wires = [layer.wire for layer in geometry.cable.layers]
     inner, outer = pairs.interface[sel], pairs.interface[sel] + 1
     E_a, nu_a = (np.array([getattr(w, key) for w in wires])[inner] for key in ("E", "nu"))
     E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
-    return hertz_mindlin(
-        line, pairs.radius_a[sel], pairs.radius_b[sel], crossing_angle(tangents), pairs.tributary[sel],
-        E_a=E_a, nu_a=nu_a, E_b=E_b, nu_b=nu_b, mu=mu if settings.friction else None,
+    chosen = Wires(
+        line=bool(np.all(pairs.kind[sel] == LINE)), radius_a=pairs.radius_a[sel],
+        radius_b=pairs.radius_b[sel], E_a=E_a, nu_a=nu_a, E_b=E_b, nu_b=nu_b,
+        mu=pairs.friction[sel] if settings.friction else None, tributary=pairs.tributary[sel],
+        angle=crossing_angle(tangents),
     )  # fmt: skip
+    return compliance_named(settings.compliance).build(chosen, settings)
 
 
 def wire_chains(geometry: StrandGeometry) -> NodeChains:

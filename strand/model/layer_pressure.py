@@ -56,7 +56,7 @@ __all__ = ["LayerPressure", "layer_pressure", "layer_wire_forces", "fibre_pressu
 Array = npt.NDArray[np.float64]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class LayerPressure:
     """Where one helical layer's pressure goes, per metre of strand over the middle half.
 

@@ -3,11 +3,14 @@ ring, against the fibre model."""
 
 from __future__ import annotations
 
+import io
 from functools import partial
 
 import numpy as np
 import pytest
 
+from strand.app.case import load_case
+from strand.app.run import run_case
 from strand.cable.description import cable_from_dict
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
@@ -16,6 +19,7 @@ from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
 from strand.setups.saddle import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
+from strand_cases import SEVEN_WIRE
 
 
 def _seven_wire():
@@ -70,3 +74,24 @@ def test_a_jammed_ring_takes_the_rest():
     assert layer.crossings_below + layer.ring == pytest.approx(layer.fibre, rel=0.03)
     normal = layer.ring - layer.ring_friction
     assert normal == pytest.approx(2 * 6 * np.sin(np.pi / 6) * layer.hoop, rel=0.02)
+
+
+def test_a_bending_run_reports_and_draws_where_the_pressure_goes(tmp_path):
+    """A quick 1+6 bending run (packed layers, 0.1 m) writes the table at tension and at the
+    largest curvature in its summary, and ``layer_pressure.png``."""
+    path = tmp_path / "seven.toml"
+    path.write_text(SEVEN_WIRE.replace('same_layer = "off"', 'same_layer = "packed"'))
+    bending = ['load.kind="bending"', "load.curvature=0.05", "load.zone=0.04",
+               "steps.curvature=0.025", "steps.curvature_max=0.05", "load.cycle=[1.0]"]  # fmt: skip
+    case = load_case(path, [*bending, "output.fields=false", "fatigue.outputs=false",
+                            "output.plots=true"])  # fmt: skip
+    result = run_case(case, tmp_path / "out", stream=io.StringIO())
+    summary = (tmp_path / "out" / "summary.txt").read_text()
+    print(summary[summary.index("where each layer") :])
+    assert "where each layer's pressure goes" in summary
+    assert "at the largest load κ = 0.05 1/m:" in summary
+    assert (tmp_path / "out" / "layer_pressure.png").stat().st_size > 10_000
+    for state in (result.tensioned_layers, result.peak_layers):
+        (layer,) = state
+        assert layer.gap_closed
+        assert layer.crossings_below + layer.ring == pytest.approx(layer.fibre, rel=0.05)

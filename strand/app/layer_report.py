@@ -46,7 +46,7 @@ def layer_pressure_lines(result, peak_text: str = "") -> list[str]:
         "  (hoop force H per m of strand, ring ≈ 2π H), line force across the layer's gap "
         "and its two bounding contacts; equilibrium: fibre + the layer above's = below + ring",
     ]
-    lines += _table("  after tension:", result.tensioned_layers)
+    lines += _table("  tensioned state:", result.tensioned_layers)
     if result.peak_layers:
         lines += _table(f"  at the largest load{' ' + peak_text if peak_text else ''}:",
                         result.peak_layers)  # fmt: skip
@@ -66,7 +66,7 @@ def layer_pressure_figure(result, title: str, peak_text: str = "", note: str = "
 
     from .plots import save_figure
 
-    states = [("after tension", result.tensioned_layers)]
+    states = [("tensioned state", result.tensioned_layers)]
     if result.peak_layers:
         states.append((f"largest load {peak_text}".strip(), result.peak_layers))
     fig, axes = plt.subplots(1, len(states), figsize=(5.5 * len(states), 4.2), squeeze=False,

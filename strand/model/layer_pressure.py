@@ -156,12 +156,16 @@ def layer_pressure(
         s, st = same_layer, same_layer_state
         xb = (1 - s.weight[:, None]) * x[s.b0] + s.weight[:, None] * x[s.b1]
         zb = (1 - s.weight) * g.points[s.b0, 2] + s.weight * g.points[s.b1, 2]
+        # groups whose anchor is the neighbour (node stencil, large sliding) give the normal
+        # b → a and the friction on b: turn both to a → b and the friction on a
         n = np.asarray(st["normal"], dtype=float)
+        turn = np.where(np.einsum("ij,ij->i", n, xb - x[s.a]) < 0, -1.0, 1.0)
+        n = turn[:, None] * n
         er_a = _radial(g, x[s.a], g.points[s.a, 2], core)
         er_b = _radial(g, xb, zb, core)
         force = np.asarray(st["force"], dtype=float)
         ring_terms = force * np.einsum("ij,ij->i", n, er_b - er_a)
-        traction = np.asarray(st.get("traction", np.zeros_like(n)), dtype=float)
+        traction = turn[:, None] * np.asarray(st.get("traction", np.zeros_like(n)), dtype=float)
         friction_terms = np.einsum("ij,ij->i", traction, er_a - er_b)
         axis = _radial_axis(g, g.points[s.a, 2], core)
         in_plane = np.linalg.norm(n - np.einsum("ij,ij->i", n, axis)[:, None] * axis, axis=1)

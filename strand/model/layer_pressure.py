@@ -177,7 +177,7 @@ def layer_pressure(
         below = radial[inside & (p.interface == i - 1)].sum() / window
         record = {"layer": i, "wire_force": float(np.asarray(wire_force)[i - 1]),
                   "fibre": float(fibre[i - 1]), "crossings_below": float(below)}  # fmt: skip
-        if ring_terms is not None:
+        if ring_terms is not None and lay.wires > 1:
             mine = s_inside & (s.layer == i)
             wires = np.flatnonzero(g.wire_layer == i)
             gap_pairs = mine & (s_wire == wires[-1])

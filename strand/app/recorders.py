@@ -31,6 +31,7 @@ __all__ = [
     "BendingTable",
     "FieldSeries",
     "KeyStates",
+    "state_layer_pressure",
     "SlipTable",
     "SmallSlidingMonitor",
     "CheckpointRecorder",
@@ -263,6 +264,10 @@ class KeyStates:
     def __init__(self):
         self.tensioned = None
         self.tensioned_pairs = None
+        #: where each layer's pressure goes (``layer_pressure.LayerPressure`` per layer) at the
+        #: tensioned state and at the largest abs(cycle load)
+        self.tensioned_layers = None
+        self.peak_layers = None
         self.tension_end = None
         self.tension_end_pairs = None
         self.first_cycle = None
@@ -274,6 +279,7 @@ class KeyStates:
         if not ctx.cycle:
             self.tensioned = ctx.cells
             self.tensioned_pairs = ctx.pairs
+            self.tensioned_layers = state_layer_pressure(ctx)
             if ctx.step.parameter == "tension":
                 self.tension_end, self.tension_end_pairs = ctx.cells, ctx.pairs
             return
@@ -283,9 +289,23 @@ class KeyStates:
             self._peak_load = ctx.step.load
             self.peak = ctx.cells
             self.peak_w = ctx.problem.model.node_values()
+            self.peak_layers = state_layer_pressure(ctx)
 
     def close(self) -> None:
         pass
+
+
+def state_layer_pressure(ctx: StepContext) -> list:
+    """Where each layer's pressure goes at the step (``layer_pressure.layer_pressure``), from the
+    wires' axial forces in the middle half; collective."""
+    from ..model.layer_pressure import layer_pressure, layer_wire_forces
+
+    model, cells = ctx.problem.model, ctx.cells
+    forces = layer_wire_forces(cells.layer, cells.z, cells.axial, model.geometry.length)
+    return layer_pressure(
+        model.geometry, ctx.pairs, forces, model.positions(),
+        same_layer=model.same_layer_pairs, same_layer_state=model.same_layer_history(),
+    )  # fmt: skip
 
 
 class SlipTable(_CsvFile):

@@ -36,6 +36,8 @@ OUTPUTS = {
     "(displacements magnified, factor in the title)",
     "fretting_map.png": "figure: the contact pairs that slid, per interface",
     "stress_range.png": "figure: stress ranges against the S-N curve",
+    "layer_pressure.png": "figure: per layer, its pressure on the crossings below, its "
+    "same-layer ring's share and the fibre model, tensioned and at the peak",
 }
 
 

@@ -5,7 +5,7 @@ and figures are made from these, never from the files the run wrote. Units: SI; 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -55,6 +55,11 @@ class RunResult:
     cycle_parameter: str = ""
     #: the state kept in memory at the steps ``run_programme_with_outputs(keep=)`` chose
     kept: Any = None
+    _: KW_ONLY
+    #: where each layer's pressure goes (``layer_pressure.LayerPressure`` per helical layer)
+    #: at the tensioned state and at the largest abs(cycle load)
+    tensioned_layers: list | None = None
+    peak_layers: list | None = None
 
     @property
     def iterations(self) -> int:

@@ -219,6 +219,7 @@ def run_programme_with_outputs(
     result.tensioned, result.peak, result.peak_w = keys.tensioned, keys.peak, keys.peak_w
     result.tensioned_pairs, result.first_cycle = keys.tensioned_pairs, keys.first_cycle
     result.tension_end, result.tension_end_pairs = keys.tension_end, keys.tension_end_pairs
+    result.tensioned_layers, result.peak_layers = keys.tensioned_layers, keys.peak_layers
     result.bending, result.slip = recording.bending.rows, recording.slip.rows
     result.reactions = recording.steps_table.reactions
     result.reference = kind.reference(case, result)

@@ -24,6 +24,7 @@ from ...cable.description import Cable
 from ...model.post import LayerFields
 from ...setups.bending import ZoneBending
 from ..errors import CaseError
+from ..layer_report import layer_pressure_figure, layer_pressure_lines
 from ..recorders import SlipFractions, StepBending
 from ..settings import Case
 from .base import SetupKind
@@ -100,10 +101,18 @@ class UniformBending(SetupKind):
         )
 
     def summary_lines(self, case: Case, result) -> list[str]:
-        return bending_lines(self.load(case).zone, result.reference)
+        return bending_lines(self.load(case).zone, result.reference) + layer_pressure_lines(
+            result, self._peak_text(result)
+        )
 
     def figures(self, case: Case, result, note: str = "") -> list[Path]:
-        return [bending_figure(case, result, note)]
+        title = f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN"
+        layers = layer_pressure_figure(result, title, self._peak_text(result), note)
+        return [bending_figure(case, result, note)] + ([layers] if layers else [])
+
+    def _peak_text(self, result) -> str:
+        peak = result.peak_step
+        return "" if peak is None else self.load_text(peak.load)
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,7 @@ import numpy.typing as npt
 
 from ...cable.description import Cable
 from ..errors import CaseError
+from ..layer_report import layer_pressure_figure, layer_pressure_lines
 from ..settings import Case
 from .base import SetupKind
 
@@ -201,13 +202,17 @@ class Saddle(SetupKind):
                 "back at P = 0: deflection "
                 + ", ".join(f"{1e3 * s.state.deflection:+.2f} mm" for s in zero)
             )
-        return lines + saddle_beam_lines(result)
+        return (lines + saddle_beam_lines(result)
+                + layer_pressure_lines(result, self.load_text(peak.load)))  # fmt: skip
 
     def figures(self, case: Case, result, note: str = "") -> list[Path]:
         if not result.cycle_steps:
             return []
+        title = f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN"
+        peak = result.peak_step
+        layers = layer_pressure_figure(result, title, self.load_text(peak.load), note)
         return [load_deflection_figure(case, result, note),
-                midspan_bending_figure(case, result, note)]  # fmt: skip
+                midspan_bending_figure(case, result, note)] + ([layers] if layers else [])  # fmt: skip
 
 
 class SaddleDisplacement(Saddle):

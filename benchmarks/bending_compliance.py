@@ -51,7 +51,7 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
                 },
                 "steps": {"curvature": 0.0025, "curvature_max": 0.025},
                 "contact": contact,
-            }  # fmt: skip
+            }
         )
         folder = f"results/benchmark_bending/{key}"
         t0 = time.perf_counter()
@@ -62,8 +62,10 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
         rows.append((name, report, moments, seconds, result))
         print(f"  done: {name} ({seconds:.0f} s)", flush=True)
     ei_min, ei_max = bending_stiffness_bounds(cardinal())
-    print(f"\nCardinal, L = {length} m, T = 40 kN, uniform bending to {kappa_max} 1/m "
-          f"(EI_max {ei_max:.0f}, EI_min {ei_min:.1f} N m²)")  # fmt: skip
+    print(
+        f"\nCardinal, L = {length} m, T = 40 kN, uniform bending to {kappa_max} 1/m "
+        f"(EI_max {ei_max:.0f}, EI_min {ei_min:.1f} N m²)"
+    )
     head = f"{'variant':24s} {'M/κ₀ / EI_max':>13s}"
     head += "".join(f" {'M(' + str(k) + ') N m':>13s}" for k in KAPPAS)
     head += f" {'slip onset 0|1 1|2 2|3 3|4 (1/m)':>34s} {'time s':>7s} {'its':>5s}"

@@ -61,9 +61,12 @@ def main(case_file: str | None = None) -> None:
     ]
     for name, value in rows:
         print(f"{name:38s} {value}")
-    print("outputs by recorder (s): " + ", ".join(
-        f"{k} {v:.1f}" for k, v in sorted(result.output_timings.items(), key=lambda kv: -kv[1])
-    ))  # fmt: skip
+    print(
+        "outputs by recorder (s): "
+        + ", ".join(
+            f"{k} {v:.1f}" for k, v in sorted(result.output_timings.items(), key=lambda kv: -kv[1])
+        )
+    )
     print(f"whole case / 3-minute target: {total / 180:.2f}")
 
 

@@ -80,8 +80,10 @@ def main(steps: int = 10) -> None:
                 seconds[name] += time.perf_counter() - t0
         for r, _ in recorders.values():
             r.close()
-        print(f"Cardinal 1 m, 40 kN + 250 N, {steps} recorded steps (cell results: "
-              f"{t_cells / steps:.3f} s per step, shared)")  # fmt: skip
+        print(
+            f"Cardinal 1 m, 40 kN + 250 N, {steps} recorded steps (cell results: "
+            f"{t_cells / steps:.3f} s per step, shared)"
+        )
         print(f"{'output':28s} {'s per step':>11s} {'MB per step':>12s}")
         for name, (_, files) in recorders.items():
             size = _size([folder / f for f in files]) / 1e6

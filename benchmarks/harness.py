@@ -40,12 +40,15 @@ def stamp(command: Sequence[str] | None = None) -> str:
         command = ["python", where, *sys.argv[1:]]
     commit = _git("rev-parse", "--short", "HEAD") or "unknown"
     dirty = _git("status", "--porcelain", "--untracked-files=no")
-    return (f"{time.strftime('%Y-%m-%d %H:%M')}, commit {commit}{' (modified)' if dirty else ''}, "
-            f"{os.cpu_count()} cores, `{shlex.join(command)}`")  # fmt: skip
+    return (
+        f"{time.strftime('%Y-%m-%d %H:%M')}, commit {commit}{' (modified)' if dirty else ''}, "
+        f"{os.cpu_count()} cores, `{shlex.join(command)}`"
+    )
 
 
-def table(rows: Iterable[Sequence], columns: Sequence[str], plain: bool = False,
-          head: bool = True) -> str:  # fmt: skip
+def table(
+    rows: Iterable[Sequence], columns: Sequence[str], plain: bool = False, head: bool = True
+) -> str:
     """``rows`` (each a sequence of cells, shown with ``str``) under ``columns``. Markdown
     (``| a | b |`` under a ``|---|`` line; ``head=False``: the rows alone, for a table printed a
     row at a time) or, with ``plain``, columns padded to their widest cell, the first aligned
@@ -101,8 +104,14 @@ def run_variants(
     out = {}
     for name in names:
         n = ranks(name) if callable(ranks) else ranks
-        command = [*([*mpirun, "-n", str(n)] if n > 1 else []), sys.executable, str(script),
-                   *args, "--one", name]  # fmt: skip
+        command = [
+            *([*mpirun, "-n", str(n)] if n > 1 else []),
+            sys.executable,
+            str(script),
+            *args,
+            "--one",
+            name,
+        ]
         print(f"running: {name} …", file=sys.stderr, flush=True)
         done = subprocess.run(
             command, capture_output=True, text=True, env=env(name) if env else None

@@ -32,10 +32,18 @@ def main(lengths: list[float], extra: list[str]) -> None:
     rows = []
     sink = open("/dev/null", "w")  # noqa: SIM115
     for L in lengths:
-        settings = [f"mesh.length={L}", f"load.lateral={1000.0 / L}", "load.cycle=[1.0]",
-                    f"steps.lateral={250.0 / L}", f"steps.lateral_max={400.0 / L}",
-                    "output.plots=false", "output.fields=false", "fatigue.outputs=false",
-                    "output.checkpoint=false", *extra]  # fmt: skip
+        settings = [
+            f"mesh.length={L}",
+            f"load.lateral={1000.0 / L}",
+            "load.cycle=[1.0]",
+            f"steps.lateral={250.0 / L}",
+            f"steps.lateral_max={400.0 / L}",
+            "output.plots=false",
+            "output.fields=false",
+            "fatigue.outputs=false",
+            "output.checkpoint=false",
+            *extra,
+        ]
         case = load_case(None, settings)
         t0 = time.perf_counter()
         r = run_case(case, Path(f"results/benchmark_length/{L:g}"), stream=sink, overwrite=True)
@@ -45,14 +53,18 @@ def main(lengths: list[float], extra: list[str]) -> None:
         memory = peak_mib()
         g = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
         rows.append((L, r, seconds, lu, memory, 6 * len(g.points)))
-    print(f"{'L (m)':>6s} {'unknowns':>9s} {'steps':>6s} {'its':>5s} {'+failed':>7s} "
-          f"{'time (s)':>9s} {'s/it':>6s} {'LU share':>9s} {'peak MiB':>9s}")  # fmt: skip
+    print(
+        f"{'L (m)':>6s} {'unknowns':>9s} {'steps':>6s} {'its':>5s} {'+failed':>7s} "
+        f"{'time (s)':>9s} {'s/it':>6s} {'LU share':>9s} {'peak MiB':>9s}"
+    )
     for L, r, seconds, lu, memory, unknowns in rows:
         its = max(r.iterations, 1)
         failed = sum(s.failed_iterations for s in r.steps)
-        print(f"{L:6.2f} {unknowns:9d} {len(r.steps):6d} {r.iterations:5d} {failed:7d} "
-              f"{seconds:9.1f} {r.timings['solve'] / its:6.3f} {100 * lu / r.timings['solve']:8.0f} % "
-              f"{memory:9.0f}{'  FAILED' if r.failure else ''}")  # fmt: skip
+        print(
+            f"{L:6.2f} {unknowns:9d} {len(r.steps):6d} {r.iterations:5d} {failed:7d} "
+            f"{seconds:9.1f} {r.timings['solve'] / its:6.3f} {100 * lu / r.timings['solve']:8.0f} % "
+            f"{memory:9.0f}{'  FAILED' if r.failure else ''}"
+        )
     x = np.log([row[0] for row in rows])
     fits = {
         "wall time": [row[2] for row in rows],

@@ -47,8 +47,14 @@ def main(length: float = 1.0) -> None:
         f"# LU fill of Cardinal's tangent pattern, L = {length:g} m, "
         f"{6 * len(geometry.points)} unknowns\n\nstamp: {stamp()}\n"
     )
-    columns = ["same-layer pairs", "matrix entries", "ordering", "LU operations", "factor entries",
-               "s"]  # fmt: skip
+    columns = [
+        "same-layer pairs",
+        "matrix entries",
+        "ordering",
+        "LU operations",
+        "factor entries",
+        "s",
+    ]
     print(table([], columns))
     variants = {
         "off": crossings,
@@ -62,8 +68,14 @@ def main(length: float = 1.0) -> None:
             t0 = time.perf_counter()
             flops, factor = pattern_lu(A, ORDERINGS[ordering])
             seconds = time.perf_counter() - t0
-            cells = [name, f"{entries:.3g}", ordering.upper(), f"{flops:.3g}", f"{factor:.3g}",
-                     f"{seconds:.1f}"]  # fmt: skip
+            cells = [
+                name,
+                f"{entries:.3g}",
+                ordering.upper(),
+                f"{flops:.3g}",
+                f"{factor:.3g}",
+                f"{seconds:.1f}",
+            ]
             print(table([cells], columns, head=False), flush=True)
         A.destroy()
     pairs = same_layer_pairs(geometry, "packed")
@@ -72,10 +84,26 @@ def main(length: float = 1.0) -> None:
     cells = []
     for layer in np.unique(pairs.layer):
         m = pairs.layer == layer
-        cells.append([layer, m.sum(), f"{h[m].mean() * 1e3:.2f}",
-                      f"{np.median(offset[m]) * 1e3:.2f}, {offset[m].max() * 1e3:.2f}"])  # fmt: skip
-    print("\n" + table(cells, ["layer", "same-layer pairs", "element (mm)",
-                               "facing point to nearest node: median, max (mm)"]))  # fmt: skip
+        cells.append(
+            [
+                layer,
+                m.sum(),
+                f"{h[m].mean() * 1e3:.2f}",
+                f"{np.median(offset[m]) * 1e3:.2f}, {offset[m].max() * 1e3:.2f}",
+            ]
+        )
+    print(
+        "\n"
+        + table(
+            cells,
+            [
+                "layer",
+                "same-layer pairs",
+                "element (mm)",
+                "facing point to nearest node: median, max (mm)",
+            ],
+        )
+    )
     problem.solver.destroy()
 
 

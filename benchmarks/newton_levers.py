@@ -67,9 +67,13 @@ def run(path: str, name: str) -> None:
         totals["lus"] += result.factorisations
         totals["solves"] += solves
         totals["s"] += seconds
-        print(f"| {name} | {P:g} | {result.converged}{' (fell back)' if result.fallback else ''} "
-              f"| {result.iterations} | {result.factorisations} | {solves} | {seconds:.1f} | "
-              + " ".join(f"{r:.1e}" for r in history) + " |", flush=True)  # fmt: skip
+        print(
+            f"| {name} | {P:g} | {result.converged}{' (fell back)' if result.fallback else ''} "
+            f"| {result.iterations} | {result.factorisations} | {solves} | {seconds:.1f} | "
+            + " ".join(f"{r:.1e}" for r in history)
+            + " |",
+            flush=True,
+        )
         if not result.converged:
             break
         s.commit()

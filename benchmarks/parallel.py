@@ -107,17 +107,42 @@ def main(quick: bool) -> None:
     for name, _, _, info in rows:
         its = max(info["iterations"], 1)
         memory = " / ".join(f"{m:.0f}" for m in info["memory"])
-        cells.append([name, f"{info['seconds']:.1f}", info["steps"], info["iterations"],
-                      info["cuts"], f"{info['solve'] / its:.2f}",
-                      f"{100 * info['lu'] / info['solve']:.0f} %", memory])  # fmt: skip
-    print(table(cells, ["variant", "time (s)", "steps", "its", "cuts", "s/it", "LU share",
-                        "peak memory per rank (MiB)"], plain=True))  # fmt: skip
+        cells.append(
+            [
+                name,
+                f"{info['seconds']:.1f}",
+                info["steps"],
+                info["iterations"],
+                info["cuts"],
+                f"{info['solve'] / its:.2f}",
+                f"{100 * info['lu'] / info['solve']:.0f} %",
+                memory,
+            ]
+        )
+    print(
+        table(
+            cells,
+            [
+                "variant",
+                "time (s)",
+                "steps",
+                "its",
+                "cuts",
+                "s/it",
+                "LU share",
+                "peak memory per rank (MiB)",
+            ],
+            plain=True,
+        )
+    )
     for name, _, _, info in rows:
         if info["failure"]:
             print(f"{name}: FAILED: {info['failure']}")
     d, f = difference(rows[0][2], rows[1][2])
-    print(f"\n2 ranks against 1: deflection and end displacement within {d:.1e} (relative), "
-          f"wire axial forces within {f:.1e} (relative to the largest)")  # fmt: skip
+    print(
+        f"\n2 ranks against 1: deflection and end displacement within {d:.1e} (relative), "
+        f"wire axial forces within {f:.1e} (relative to the largest)"
+    )
     print(f"2 ranks / 1 rank wall time: {rows[1][3]['seconds'] / rows[0][3]['seconds']:.2f}")
 
 

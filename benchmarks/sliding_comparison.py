@@ -83,8 +83,10 @@ def main(which: str = "helix", p_max: float | None = None, length: float | None 
     res = [run(geometry, m, 40e3, p_max, p_step) for m in ("small", "large")]
     small, large = res
     print(f"{geometry.cable.name}, L = {geometry.length} m, T = 40 kN, saddle 0 → {p_max:.0f} N")
-    print(f"{'model':6s} {'steps':>5s} {'cuts':>4s} {'Newton its':>10s} {'time s':>7s} "
-          f"{'s/it':>5s} {'contact s':>9s} {'nnz':>9s} {'MUMPS MB':>8s} {'δ mm':>7s}")  # fmt: skip
+    print(
+        f"{'model':6s} {'steps':>5s} {'cuts':>4s} {'Newton its':>10s} {'time s':>7s} "
+        f"{'s/it':>5s} {'contact s':>9s} {'nnz':>9s} {'MUMPS MB':>8s} {'δ mm':>7s}"
+    )
     for r in res:
         print(
             f"{r['model']:6s} {r['steps']:5d} {r['cuts']:4d} {r['iterations']:10d} "

@@ -111,7 +111,7 @@ def turning_points(folder: Path) -> dict[int, dict]:
             steps["deflection_m"][whole],
             steps["end_displacement_m"][whole],
             strict=True,
-        )  # fmt: skip
+        )
     }
     with open(folder / "axial_forces.csv") as f:
         next(f)
@@ -129,15 +129,35 @@ def turning_points(folder: Path) -> dict[int, dict]:
 def main(names: list[str], quick: bool) -> None:
     print(f"stamp: {stamp()}")
     rows = run_variants(__file__, names, ["--quick"] if quick else [], lambda n: VARIANTS[n][1])
-    columns = ["variant", "time (s)", "steps", "its", "+failed", "LUs", "s/LU", "s/it",
-               "output s", "peak MiB"]  # fmt: skip
+    columns = [
+        "variant",
+        "time (s)",
+        "steps",
+        "its",
+        "+failed",
+        "LUs",
+        "s/LU",
+        "s/it",
+        "output s",
+        "peak MiB",
+    ]
     cells = []
     for name, r in rows.items():
         its = r["iterations"] + r["failed_iterations"]
-        cells.append([name, f"{r['seconds']:.0f}", r["steps"], r["iterations"],
-                      r["failed_iterations"], r["lu"], f"{r['lu_seconds'] / max(r['lu'], 1):.2f}",
-                      f"{r['seconds'] / max(its, 1):.2f}", f"{r['output_seconds']:.0f}",
-                      f"{r['peak_mib']:.0f}"])  # fmt: skip
+        cells.append(
+            [
+                name,
+                f"{r['seconds']:.0f}",
+                r["steps"],
+                r["iterations"],
+                r["failed_iterations"],
+                r["lu"],
+                f"{r['lu_seconds'] / max(r['lu'], 1):.2f}",
+                f"{r['seconds'] / max(its, 1):.2f}",
+                f"{r['output_seconds']:.0f}",
+                f"{r['peak_mib']:.0f}",
+            ]
+        )
     print(table(cells, columns, plain=True))
     for name, r in rows.items():
         if r["failure"]:
@@ -153,8 +173,10 @@ def main(names: list[str], quick: bool) -> None:
 def compare(names: list[str], reference: str) -> None:
     """Print every other variant's largest differences from ``reference`` at the turning points."""
     ref = turning_points(ROOT / slug(reference))
-    print(f"\nresults against '{reference}' at the ends of the programme's stages (t = "
-          f"{', '.join(str(t) for t in ref)}):")  # fmt: skip
+    print(
+        f"\nresults against '{reference}' at the ends of the programme's stages (t = "
+        f"{', '.join(str(t) for t in ref)}):"
+    )
     cells = []
     for name in names:
         if name == reference:

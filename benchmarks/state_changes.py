@@ -131,9 +131,11 @@ def main(settings: list[str], case_file: str | None) -> None:
                 total[k][name] += n
     its = iterations[0]
     print(f"stamp: {stamp()}")
-    print(f"{len(result.steps)} steps, {result.iterations} iterations in converged steps, "
-          f"{sum(s.failed_iterations for s in result.steps)} in failed attempts, {seconds:.0f} s "
-          f"on {comm.size} rank(s); {' '.join(settings)}")  # fmt: skip
+    print(
+        f"{len(result.steps)} steps, {result.iterations} iterations in converged steps, "
+        f"{sum(s.failed_iterations for s in result.steps)} in failed attempts, {seconds:.0f} s "
+        f"on {comm.size} rank(s); {' '.join(settings)}"
+    )
     if "--residuals" in sys.argv:
         for stage, converged, residuals in SOLVES:
             print(
@@ -146,12 +148,35 @@ def main(settings: list[str], case_file: str | None) -> None:
         for (s, name), v in sorted(total.items()):
             if s != stage:
                 continue
-            cells.append([stage, its.get(stage, 0), name, f"{v['pairs']:.0f}",
-                          f"{v['open/close'] / n:.1f}", f"{v['stick/slip'] / n:.1f}",
-                          f"{v['open at end']:.0f}", f"{v['slipping at end']:.0f}"])  # fmt: skip
+            cells.append(
+                [
+                    stage,
+                    its.get(stage, 0),
+                    name,
+                    f"{v['pairs']:.0f}",
+                    f"{v['open/close'] / n:.1f}",
+                    f"{v['stick/slip'] / n:.1f}",
+                    f"{v['open at end']:.0f}",
+                    f"{v['slipping at end']:.0f}",
+                ]
+            )
     print("flips per iteration (open/close, stick/slip) per stage and interface:")
-    print(table(cells, ["stage", "its", "interface", "pairs", "open/close", "stick/slip",
-                        "open@end", "slip@end"], plain=True))  # fmt: skip
+    print(
+        table(
+            cells,
+            [
+                "stage",
+                "its",
+                "interface",
+                "pairs",
+                "open/close",
+                "stick/slip",
+                "open@end",
+                "slip@end",
+            ],
+            plain=True,
+        )
+    )
 
 
 if __name__ == "__main__":

@@ -47,8 +47,9 @@ def state(problem) -> dict:
     length = m.geometry.points[:, 2].max()
     stations = np.linspace(0.05, 0.95, 19) * length
     wires = np.unique(cells.wire)
-    N = np.array([np.interp(stations, cells.z[cells.wire == w], cells.axial[cells.wire == w])
-                  for w in wires])  # fmt: skip
+    N = np.array(
+        [np.interp(stations, cells.z[cells.wire == w], cells.axial[cells.wire == w]) for w in wires]
+    )
     return {
         "deflection": s.deflection,
         "end": s.end_displacement,
@@ -82,13 +83,18 @@ def main(settings: list[str]) -> None:
             print(f"ran {name}: {runs[name][2]} unknowns, {runs[name][1]:.0f} s", file=sys.stderr)
     print(f"# same-layer stencils, {' '.join([*CASE, *settings])}\n")
     for k, label in enumerate(("end of tension", "peak")):
-        print(f"{label}: {'run':14s} {'deflection µm':>13s} {'end µm':>9s}  same-layer per layer "
-              f"(N) | pairs per interface (N)")  # fmt: skip
+        print(
+            f"{label}: {'run':14s} {'deflection µm':>13s} {'end µm':>9s}  same-layer per layer "
+            f"(N) | pairs per interface (N)"
+        )
         for name, (ends, _, _) in runs.items():
             e = ends[k]
-            print(f"  {name:28s} {1e6 * e['deflection']:13.3f} {1e6 * e['end']:9.4f}  "
-                  + " ".join(f"{x:8.1f}" for x in e["same"]) + " | "
-                  + " ".join(f"{x:8.1f}" for x in e["pairs"]))  # fmt: skip
+            print(
+                f"  {name:28s} {1e6 * e['deflection']:13.3f} {1e6 * e['end']:9.4f}  "
+                + " ".join(f"{x:8.1f}" for x in e["same"])
+                + " | "
+                + " ".join(f"{x:8.1f}" for x in e["pairs"])
+            )
         ref = runs["segment, h"][0][k]
         print(
             f"  differences from segment, h: {'deflection':>10s} {'end':>9s} {'N / max N':>10s} "
@@ -99,10 +105,13 @@ def main(settings: list[str]) -> None:
                 continue
             e = ends[k]
             dN = np.abs(e["N"] - ref["N"]).max() / np.abs(ref["N"]).max()
-            print(f"  {name:28s} {1e6 * (e['deflection'] - ref['deflection']):10.3f} "
-                  f"{1e6 * (e['end'] - ref['end']):9.4f} {dN:10.1e} "
-                  + " ".join(f"{x:8.1f}" for x in e["same"] - ref["same"]) + " | "
-                  + " ".join(f"{x:8.1f}" for x in e["pairs"] - ref["pairs"]))  # fmt: skip
+            print(
+                f"  {name:28s} {1e6 * (e['deflection'] - ref['deflection']):10.3f} "
+                f"{1e6 * (e['end'] - ref['end']):9.4f} {dN:10.1e} "
+                + " ".join(f"{x:8.1f}" for x in e["same"] - ref["same"])
+                + " | "
+                + " ".join(f"{x:8.1f}" for x in e["pairs"] - ref["pairs"])
+            )
 
 
 if __name__ == "__main__":

@@ -50,9 +50,11 @@ def bend(cable: Cable, length: float, tension: float, same_layer: str, slip: str
     iterations so far)."""
     geometry = build_geometry(cable, length, 4e-3)
     problem = StrandProblem(
-        geometry, ContactSettings(same_layer=same_layer, slip=slip), NewtonOptions(atol=1e-3, max_it=15),
+        geometry,
+        ContactSettings(same_layer=same_layer, slip=slip),
+        NewtonOptions(atol=1e-3, max_it=15),
         setup=partial(UniformBendingTest, zone=length / 3),
-    )  # fmt: skip
+    )
     setup = problem.setup
     pull = LoadStepper(problem.solver, 1e3, 1e3 / 64)  # as a run's [steps] tension and cuts
     pull.ramp(partial(setup.set, "tension"), 0.0, tension)
@@ -111,8 +113,17 @@ def row(name: str, same_layer: str, slip: str, length: float | None) -> list[str
         outcome = f" stopped: {str(e)[:90]}"
     cells += ["–"] * (len(KAPPAS) - len(cells))
     seconds = time.perf_counter() - t0
-    return [f"{cable.name}, {length:g} m, {tension / 1e3:g} kN", slip, same_layer, f"{estimate:.3f}",
-            slope or "–", *cells, onset(shares), closed, f"{seconds:.0f} s, {effort} its{outcome}"]  # fmt: skip
+    return [
+        f"{cable.name}, {length:g} m, {tension / 1e3:g} kN",
+        slip,
+        same_layer,
+        f"{estimate:.3f}",
+        slope or "–",
+        *cells,
+        onset(shares),
+        closed,
+        f"{seconds:.0f} s, {effort} its{outcome}",
+    ]
 
 
 def main() -> None:
@@ -123,8 +134,17 @@ def main() -> None:
     parser.add_argument("--length", type=float, help="span, m (default: the strand's)")
     args = parser.parse_args()
     print(stamp())
-    head = ["strand", "slip", "same layer", "estimate", "M/κ / EI_max",
-            *(f"M at {k:g} (law)" for k in KAPPAS), "slip onset κ", "closed", "cost"]  # fmt: skip
+    head = [
+        "strand",
+        "slip",
+        "same layer",
+        "estimate",
+        "M/κ / EI_max",
+        *(f"M at {k:g} (law)" for k in KAPPAS),
+        "slip onset κ",
+        "closed",
+        "cost",
+    ]
     print(table([], head))
     for name in args.strand:
         for slip in args.slip:

@@ -38,19 +38,29 @@ def main(length: float = 0.25, n: int = 10) -> None:
     separate = []
     for a in amplitudes:
         t0 = time.perf_counter()
-        r = run_case(load_case(None, [*settings, f"load.lateral={a}"]), ROOT / f"alone_{a:g}",
-                     stream=sink, overwrite=True)  # fmt: skip
+        r = run_case(
+            load_case(None, [*settings, f"load.lateral={a}"]),
+            ROOT / f"alone_{a:g}",
+            stream=sink,
+            overwrite=True,
+        )
         separate.append((r, time.perf_counter() - t0))
     tension = swept[0]
-    print(f"Cardinal {length} m, cycle ±A, {n} amplitudes; tension once: {len(tension.steps)} "
-          f"steps, {tension.iterations} iterations, {tension.seconds:.1f} s")  # fmt: skip
-    print(f"{'A (N)':>7s} {'sweep steps/its':>16s} {'alone steps/its':>16s} {'sweep s':>8s} "
-          f"{'alone s':>8s}")  # fmt: skip
+    print(
+        f"Cardinal {length} m, cycle ±A, {n} amplitudes; tension once: {len(tension.steps)} "
+        f"steps, {tension.iterations} iterations, {tension.seconds:.1f} s"
+    )
+    print(
+        f"{'A (N)':>7s} {'sweep steps/its':>16s} {'alone steps/its':>16s} {'sweep s':>8s} "
+        f"{'alone s':>8s}"
+    )
     for a, member, (alone, seconds) in zip(amplitudes, swept[1:], separate, strict=True):
         m_its = sum(s.iterations for s in member.cycle_steps)
         a_its = sum(s.iterations for s in alone.cycle_steps)
-        print(f"{a:7.0f} {len(member.cycle_steps):7d}/{m_its:<8d} {len(alone.cycle_steps):7d}/"
-              f"{a_its:<8d} {member.seconds:8.1f} {seconds:8.1f}")  # fmt: skip
+        print(
+            f"{a:7.0f} {len(member.cycle_steps):7d}/{m_its:<8d} {len(alone.cycle_steps):7d}/"
+            f"{a_its:<8d} {member.seconds:8.1f} {seconds:8.1f}"
+        )
     t_alone = float(np.sum([s for _, s in separate]))
     print(f"sweep {t_sweep:.0f} s, separate runs {t_alone:.0f} s: ratio {t_sweep / t_alone:.2f}")
 

@@ -73,8 +73,14 @@ VARIANTS = _with_halved(
 )
 #: a run without named variants: the issue's start, today's default and the two-node same-layer
 #: pairs, each with halved steps
-DEFAULT_RUN = [START, f"{START}, steps halved", "default", "default, steps halved",
-               "two-node same-layer pairs", "two-node same-layer pairs, steps halved"]  # fmt: skip
+DEFAULT_RUN = [
+    START,
+    f"{START}, steps halved",
+    "default",
+    "default, steps halved",
+    "two-node same-layer pairs",
+    "two-node same-layer pairs, steps halved",
+]
 
 
 def slug(name: str) -> str:
@@ -85,8 +91,11 @@ def worktree(commit: str) -> Path:
     """A checkout of ``commit`` under /tmp (made once), for its code on PYTHONPATH."""
     path = Path(f"/tmp/strand-{commit}")
     if not (path / "strand").is_dir():
-        subprocess.run(["git", "worktree", "add", "--detach", str(path), commit], check=True,
-                       capture_output=True)  # fmt: skip
+        subprocess.run(
+            ["git", "worktree", "add", "--detach", str(path), commit],
+            check=True,
+            capture_output=True,
+        )
     return path
 
 
@@ -126,8 +135,9 @@ def run_variant(name: str, quick: bool) -> dict:
     if variant.steps != 1.0:  # the variant's own increments (its code's defaults), scaled
         s = case.steps
         scaled = {"tension": s.tension, "lateral": s.lateral, "lateral_max": s.lateral_max}
-        case = load_case(None, [*settings, *(f"steps.{k}={variant.steps * v!r}"
-                                             for k, v in scaled.items())])  # fmt: skip
+        case = load_case(
+            None, [*settings, *(f"steps.{k}={variant.steps * v!r}" for k, v in scaled.items())]
+        )
     t0 = time.perf_counter()
     problem, programme = build_problem(case)
     ends, steps = [], []
@@ -148,8 +158,10 @@ def run_variant(name: str, quick: bool) -> dict:
     peak = peak_mib(comm)
     if comm.rank == 0:
         ROOT.mkdir(parents=True, exist_ok=True)
-        np.savez(ROOT / f"{slug(name)}.npz",
-                 **{f"{k}_{i}": np.asarray(v) for i, e in enumerate(ends) for k, v in e.items()})  # fmt: skip
+        np.savez(
+            ROOT / f"{slug(name)}.npz",
+            **{f"{k}_{i}": np.asarray(v) for i, e in enumerate(ends) for k, v in e.items()},
+        )
     return {
         "seconds": seconds,
         "steps": len(steps),
@@ -166,8 +178,10 @@ def ends_of(name: str) -> list[dict]:
     """The results of ``name`` at the ends of its stages."""
     data = np.load(ROOT / f"{slug(name)}.npz")
     count = 1 + max(int(k.rsplit("_", 1)[1]) for k in data.files)
-    return [{k.rsplit("_", 1)[0]: data[k] for k in data.files if k.endswith(f"_{i}")}
-            for i in range(count)]  # fmt: skip
+    return [
+        {k.rsplit("_", 1)[0]: data[k] for k in data.files if k.endswith(f"_{i}")}
+        for i in range(count)
+    ]
 
 
 def differences(name: str, reference: str) -> dict[str, float]:
@@ -197,22 +211,44 @@ def main(names: list[str], quick: bool, ranks: int) -> None:
 
     rows = run_variants(__file__, names, ["--quick"] if quick else [], ranks, env)
     first = rows[names[0]]["seconds"]
-    columns = ["variant", "time (s)", "/first", "steps", "its", "+failed", "LUs", "s/LU", "s/it",
-               "peak MiB"]  # fmt: skip
+    columns = [
+        "variant",
+        "time (s)",
+        "/first",
+        "steps",
+        "its",
+        "+failed",
+        "LUs",
+        "s/LU",
+        "s/it",
+        "peak MiB",
+    ]
     cells = []
     for name, r in rows.items():
         its = r["iterations"] + r["failed_iterations"]
-        cells.append([name, f"{r['seconds']:.0f}", f"{r['seconds'] / first:.2f}", r["steps"],
-                      r["iterations"], r["failed_iterations"], r["lu"],
-                      f"{r['lu_seconds'] / max(r['lu'], 1):.2f}", f"{r['seconds'] / max(its, 1):.2f}",
-                      f"{r['peak_mib']:.0f}"])  # fmt: skip
+        cells.append(
+            [
+                name,
+                f"{r['seconds']:.0f}",
+                f"{r['seconds'] / first:.2f}",
+                r["steps"],
+                r["iterations"],
+                r["failed_iterations"],
+                r["lu"],
+                f"{r['lu_seconds'] / max(r['lu'], 1):.2f}",
+                f"{r['seconds'] / max(its, 1):.2f}",
+                f"{r['peak_mib']:.0f}",
+            ]
+        )
     print("\n" + table(cells, columns, plain=True))
     for name, r in rows.items():
         if r["failure"]:
             print(f"{name}: FAILED: {r['failure']}")
-    print("\nat the end of the tension and at the peak, the largest differences: deflection and "
-          "end displacement (µm), element axial forces, contact pair and same-layer pair forces "
-          "(each against the largest)")  # fmt: skip
+    print(
+        "\nat the end of the tension and at the peak, the largest differences: deflection and "
+        "end displacement (µm), element axial forces, contact pair and same-layer pair forces "
+        "(each against the largest)"
+    )
     cells = []
     for name in rows:
         compared = [(f"{name} against its steps halved", f"{name}, steps halved")]
@@ -221,8 +257,16 @@ def main(names: list[str], quick: bool, ranks: int) -> None:
         for label, reference in compared:
             if reference in rows:
                 d = differences(name, reference)
-                cells.append([label, f"{d['deflection']:.3f}", f"{d['end']:.3f}", f"{d['N']:.1e}",
-                              f"{d['pairs']:.1e}", f"{d['same']:.1e}"])  # fmt: skip
+                cells.append(
+                    [
+                        label,
+                        f"{d['deflection']:.3f}",
+                        f"{d['end']:.3f}",
+                        f"{d['N']:.1e}",
+                        f"{d['pairs']:.1e}",
+                        f"{d['same']:.1e}",
+                    ]
+                )
     if cells:
         print(table(cells, ["", "deflection", "end", "axial", "pairs", "same"], plain=True))
 

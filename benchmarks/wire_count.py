@@ -111,10 +111,15 @@ def strand_cable(wires: int) -> dict:
     n = layers_of(wires)
     wire = {"diameter": WIRE_DIAMETER, **STEEL}
     layers = [
-        {"wires": 6 * k, **wire, "lay_angle": LAY_ANGLE, "lay": "Z" if (n - k) % 2 == 0 else "S",
-         "friction": FRICTION}
+        {
+            "wires": 6 * k,
+            **wire,
+            "lay_angle": LAY_ANGLE,
+            "lay": "Z" if (n - k) % 2 == 0 else "S",
+            "friction": FRICTION,
+        }
         for k in range(1, n + 1)
-    ]  # fmt: skip
+    ]
     name = "steel spiral strand 1+" + "+".join(str(6 * k) for k in range(1, n + 1))
     return {"name": name, "core": {**wire, "friction": FRICTION}, "layer": layers}
 
@@ -136,12 +141,17 @@ def case_for(wires: int, length: float, settings: list[str]):
         "cable": strand_cable(wires),
         "mesh": {"length": length},
         "load": {"kind": "saddle", "tension": tension, "lateral": lateral, "cycle": [1.0, 0.0]},
-        "steps": {"tension": tension / 40, "lateral": lateral * 250 / 4300,
-                  "lateral_max": lateral * 400 / 4300, "tolerance": 2.5e-7 * tension},
+        "steps": {
+            "tension": tension / 40,
+            "lateral": lateral * 250 / 4300,
+            "lateral_max": lateral * 400 / 4300,
+            "tolerance": 2.5e-7 * tension,
+        },
         "fatigue": {"breaking_strength": mbs},
-    }  # fmt: skip
-    return case_from_dict(merge_settings(data, parse_settings(settings)),
-                          source=f"{wires}-wire strand")  # fmt: skip
+    }
+    return case_from_dict(
+        merge_settings(data, parse_settings(settings)), source=f"{wires}-wire strand"
+    )
 
 
 def factor_info(factor) -> dict:
@@ -195,19 +205,30 @@ def worker(wires: int, length: float, folder: Path, settings: list[str]) -> None
     if comm.rank == 0:
         c = case.contact
         measured = {
-            "wires": wires, "ranks": comm.size, "length": length, **size, **factor,
-            "tension": case.load.tension, "lateral": case.load.lateral,
-            "seconds": seconds, "setup_seconds": result.setup_seconds,
-            "steps": len(result.steps), "iterations": result.iterations,
+            "wires": wires,
+            "ranks": comm.size,
+            "length": length,
+            **size,
+            **factor,
+            "tension": case.load.tension,
+            "lateral": case.load.lateral,
+            "seconds": seconds,
+            "setup_seconds": result.setup_seconds,
+            "steps": len(result.steps),
+            "iterations": result.iterations,
             "failed_iterations": sum(s.failed_iterations for s in result.steps),
             "cuts": sum(s.cuts for s in result.steps),
-            "solve_seconds": result.timings["solve"], "output_seconds": result.timings["output"],
-            "lu": lu["count"], "lu_seconds": lu["time"],
-            "analyses": analysis["count"], "analysis_seconds": analysis["time"],
-            "peak_mib": peak, "failure": result.failure,
+            "solve_seconds": result.timings["solve"],
+            "output_seconds": result.timings["output"],
+            "lu": lu["count"],
+            "lu_seconds": lu["time"],
+            "analyses": analysis["count"],
+            "analysis_seconds": analysis["time"],
+            "peak_mib": peak,
+            "failure": result.failure,
             "contact": f"normal {c.normal}, {c.compliance}, same_layer {c.same_layer}, "
-                       f"slip {c.slip}, {c.model} sliding",
-        }  # fmt: skip
+            f"slip {c.slip}, {c.model} sliding",
+        }
         (path / "measured.json").write_text(json.dumps(measured))
 
 
@@ -241,8 +262,9 @@ def factorise(A, icntl: dict[int, int]) -> dict:
     failed, detail = F.getMumpsInfog(1), F.getMumpsInfog(2)
     if failed < 0:
         out.update(flops=math.nan, entries=math.nan, factor_mb=math.nan, ordering="–")
-        out["error"] = (out.get("error", "") + f" MUMPS INFOG(1) = {failed}, "
-                        f"INFOG(2) = {detail}").strip()  # fmt: skip
+        out["error"] = (
+            out.get("error", "") + f" MUMPS INFOG(1) = {failed}, INFOG(2) = {detail}"
+        ).strip()
     ksp.destroy()
     return out
 
@@ -263,8 +285,12 @@ def analysis_probe(wires: int, length: float, out: Path, settings: list[str]) ->
     rows = {name: factorise(problem.solver.A, icntl) for name, icntl in ANALYSES.items()}
     problem.solver.destroy()
     if MPI.COMM_WORLD.rank == 0:
-        info = {"wires": wires, "ranks": MPI.COMM_WORLD.size, "length": length,
-                "first_step": first.converged}  # fmt: skip
+        info = {
+            "wires": wires,
+            "ranks": MPI.COMM_WORLD.size,
+            "length": length,
+            "first_step": first.converged,
+        }
         out.write_text(json.dumps({**info, "rows": rows}))
 
 
@@ -298,17 +324,25 @@ def run(root: Path, wires: int, ranks: int, length: float, settings: list[str]) 
     (folder / "measured.json").unlink(missing_ok=True)
     print(f"running {name} …", file=sys.stderr, flush=True)
     t0 = time.perf_counter()
-    code = launch(["--worker", str(wires), str(length), str(folder), *settings], ranks,
-                  root / f"{name}.log")  # fmt: skip
+    code = launch(
+        ["--worker", str(wires), str(length), str(folder), *settings], ranks, root / f"{name}.log"
+    )
     if code != 0 or not (folder / "measured.json").exists():
         tail = (root / f"{name}.log").read_text().strip().splitlines()[-1:] or [""]
         print(f"{name}: FAILED (exit code {code})", file=sys.stderr, flush=True)
-        return {"wires": wires, "ranks": ranks, "seconds": time.perf_counter() - t0,
-                "failure": f"exit code {code}: {tail[0][:120]}"}  # fmt: skip
+        return {
+            "wires": wires,
+            "ranks": ranks,
+            "seconds": time.perf_counter() - t0,
+            "failure": f"exit code {code}: {tail[0][:120]}",
+        }
     r = json.loads((folder / "measured.json").read_text())
-    print(f"{name}: {r['seconds']:.0f} s, {r['iterations']} (+{r['failed_iterations']}) "
-          f"iterations, {per_iteration(r):.3f} s per iteration, {r['peak_mib']:.0f} MiB",
-          file=sys.stderr, flush=True)  # fmt: skip
+    print(
+        f"{name}: {r['seconds']:.0f} s, {r['iterations']} (+{r['failed_iterations']}) "
+        f"iterations, {per_iteration(r):.3f} s per iteration, {r['peak_mib']:.0f} MiB",
+        file=sys.stderr,
+        flush=True,
+    )
     return r
 
 
@@ -323,9 +357,26 @@ def per_iteration(r: dict) -> float:
 
 def run_table(rows: list[dict]) -> str:
     """The runs as a markdown table."""
-    head = ["wires", "ranks", "unknowns", "pairs", "T (kN)", "P (kN)", "steps", "its (+failed)",
-            "LUs", "wall (s)", "s/it", "s/LU", "analysis (s)", "outputs (s)", "LU flops",
-            "factor entries", "factor MB", "peak MiB"]  # fmt: skip
+    head = [
+        "wires",
+        "ranks",
+        "unknowns",
+        "pairs",
+        "T (kN)",
+        "P (kN)",
+        "steps",
+        "its (+failed)",
+        "LUs",
+        "wall (s)",
+        "s/it",
+        "s/LU",
+        "analysis (s)",
+        "outputs (s)",
+        "LU flops",
+        "factor entries",
+        "factor MB",
+        "peak MiB",
+    ]
     lines = []
     for r in rows:
         if "steps" not in r:
@@ -333,14 +384,25 @@ def run_table(rows: list[dict]) -> str:
             lines.append(cells + ["–"] * (len(head) - len(cells)))
             continue
         cells = [
-            str(r["wires"]), str(r["ranks"]), str(r["unknowns"]), str(r["pairs"]),
-            f"{r['tension'] / 1e3:.1f}", f"{r['lateral'] / 1e3:.2f}", str(r["steps"]),
-            f"{r['iterations']} (+{r['failed_iterations']})", str(r["lu"]),
-            f"{r['seconds']:.1f}", f"{per_iteration(r):.3f}",
-            f"{r['lu_seconds'] / max(r['lu'], 1):.3f}", f"{r['analysis_seconds']:.2f}",
-            f"{r['output_seconds']:.1f}", _g(r["flops"]), _g(r["entries"]),
-            _g(r["factor_mb"], 4), f"{r['peak_mib']:.0f}",
-        ]  # fmt: skip
+            str(r["wires"]),
+            str(r["ranks"]),
+            str(r["unknowns"]),
+            str(r["pairs"]),
+            f"{r['tension'] / 1e3:.1f}",
+            f"{r['lateral'] / 1e3:.2f}",
+            str(r["steps"]),
+            f"{r['iterations']} (+{r['failed_iterations']})",
+            str(r["lu"]),
+            f"{r['seconds']:.1f}",
+            f"{per_iteration(r):.3f}",
+            f"{r['lu_seconds'] / max(r['lu'], 1):.3f}",
+            f"{r['analysis_seconds']:.2f}",
+            f"{r['output_seconds']:.1f}",
+            _g(r["flops"]),
+            _g(r["entries"]),
+            _g(r["factor_mb"], 4),
+            f"{r['peak_mib']:.0f}",
+        ]
         lines.append(cells)
     return table(lines, head)
 
@@ -366,21 +428,45 @@ def exponent(wires, values) -> float:
 
 def exponents(rows: list[dict], ranks: int) -> str:
     done = [r for r in rows if r["ranks"] == ranks and "steps" in r and not r["failure"]]
-    fits = [f"{name} {_g(exponent([r['wires'] for r in done], [f(r) for r in done]), 3)}"
-            for name, f in FITS.items()]  # fmt: skip
+    fits = [
+        f"{name} {_g(exponent([r['wires'] for r in done], [f(r) for r in done]), 3)}"
+        for name, f in FITS.items()
+    ]
     return f"{ranks} rank{'s' if ranks > 1 else ''}: " + ", ".join(fits)
 
 
 def probe_lines(probe: dict) -> list[str]:
-    head = ["MUMPS analysis", "analysis (s)", "factorisation (s)", "INFOG(32)", "ordering",
-            "LU flops", "factor entries", "factor MB", "residual", "error"]  # fmt: skip
-    lines = [f"\nMUMPS's analysis on {probe['ranks']} ranks, {probe['wires']} wires, the Jacobian "
-             f"after the first tension step (converged: {probe['first_step']}):", ""]  # fmt: skip
+    head = [
+        "MUMPS analysis",
+        "analysis (s)",
+        "factorisation (s)",
+        "INFOG(32)",
+        "ordering",
+        "LU flops",
+        "factor entries",
+        "factor MB",
+        "residual",
+        "error",
+    ]
+    lines = [
+        f"\nMUMPS's analysis on {probe['ranks']} ranks, {probe['wires']} wires, the Jacobian "
+        f"after the first tension step (converged: {probe['first_step']}):",
+        "",
+    ]
     rows = []
     for name, r in probe["rows"].items():
-        cells = [name, f"{r['analysis_s']:.3f}", f"{r['factor_s']:.3f}", str(r["analysis"]),
-                 r["ordering"], _g(r["flops"]), _g(r["entries"]), _g(r["factor_mb"], 4),
-                 _g(r.get("residual", math.nan), 2), r.get("error", "")]  # fmt: skip
+        cells = [
+            name,
+            f"{r['analysis_s']:.3f}",
+            f"{r['factor_s']:.3f}",
+            str(r["analysis"]),
+            r["ordering"],
+            _g(r["flops"]),
+            _g(r["entries"]),
+            _g(r["factor_mb"], 4),
+            _g(r.get("residual", math.nan), 2),
+            r.get("error", ""),
+        ]
         rows.append(cells)
     return [*lines, table(rows, head)]
 
@@ -407,17 +493,21 @@ def main(args: argparse.Namespace, settings: list[str]) -> None:
         out = root / "analysis.json"
         out.unlink(missing_ok=True)
         print(f"probing MUMPS's analysis on {max(sizes)} wires, 2 ranks …", file=sys.stderr)
-        launch(["--probe", str(max(sizes)), str(length), str(out), *settings], 2,
-               root / "analysis.log")  # fmt: skip
+        launch(
+            ["--probe", str(max(sizes)), str(length), str(out), *settings], 2, root / "analysis.log"
+        )
         probe = json.loads(out.read_text()) if out.exists() else None
     print(f"\nWire count: {stamp()}")
     contact = next((r["contact"] for r in rows if "contact" in r), "–")
     orderings = sorted({r["ordering"] for r in rows if "ordering" in r})
-    print(f"steel spiral strands of {WIRE_DIAMETER * 1e3:g} mm wires, {LAY_ANGLE:g}° lay, "
-          f"friction {FRICTION:g}, {_g(length)} m; saddle test: T = {TENSION_SHARE:g} MBS, P = "
-          f"{LATERAL_SHARE:g} T up and back; contact: {contact}; MUMPS ordering: "
-          f"{', '.join(orderings) or '–'}"
-          + (f"; settings: {' '.join(settings)}" if settings else "") + "\n")  # fmt: skip
+    print(
+        f"steel spiral strands of {WIRE_DIAMETER * 1e3:g} mm wires, {LAY_ANGLE:g}° lay, "
+        f"friction {FRICTION:g}, {_g(length)} m; saddle test: T = {TENSION_SHARE:g} MBS, P = "
+        f"{LATERAL_SHARE:g} T up and back; contact: {contact}; MUMPS ordering: "
+        f"{', '.join(orderings) or '–'}"
+        + (f"; settings: {' '.join(settings)}" if settings else "")
+        + "\n"
+    )
     print(run_table(rows))
     for r in rows:
         if r["failure"]:
@@ -446,13 +536,20 @@ if __name__ == "__main__":
         parser.add_argument("--wires", type=int, nargs="+", help="strand sizes (7, 19, 37, …)")
         parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
         parser.add_argument("--length", type=float, help=f"span, m (default {LENGTH:g})")
-        parser.add_argument("--no-analysis", action="store_true",
-                            help="skip the probe of MUMPS's parallel analysis")  # fmt: skip
-        parser.add_argument("--report", action="store_true",
-                            help="print the table of the runs already in the results folder")  # fmt: skip
-        parser.add_argument("--folder", default="",
-                            help="a folder of its own (under the results folder) for the runs "
-                                 "of these settings, e.g. steps.iteration=\"reuse_lu\"")  # fmt: skip
+        parser.add_argument(
+            "--no-analysis", action="store_true", help="skip the probe of MUMPS's parallel analysis"
+        )
+        parser.add_argument(
+            "--report",
+            action="store_true",
+            help="print the table of the runs already in the results folder",
+        )
+        parser.add_argument(
+            "--folder",
+            default="",
+            help="a folder of its own (under the results folder) for the runs "
+            'of these settings, e.g. steps.iteration="reuse_lu"',
+        )
         args, settings = parser.parse_known_args()
         unknown = [s for s in settings if "=" not in s]
         if unknown:

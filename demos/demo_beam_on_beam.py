@@ -77,8 +77,9 @@ x_b = np.c_[x, 0 * x, 0 * x + r_a + r_b]
 points = np.vstack([x_a, x_b])
 cells = np.vstack([np.c_[0:n, 1 : n + 1], np.c_[0:n, 1 : n + 1] + n + 1])
 reach = 1e-6  # the largest initial gap of a pair (m): the beams touch
-stencils = candidate_stencils(points, cells, range(n + 1), range(n + 1, 2 * n + 2), r_a, r_b,
-                              reach, line=True)  # fmt: skip
+stencils = candidate_stencils(
+    points, cells, range(n + 1), range(n + 1, 2 * n + 2), r_a, r_b, reach, line=True
+)
 partitioner = slab_partitioner(points[:, 0], cells, [stencils])
 domain = polyline_mesh(comm, points, cells, partitioner)
 V = beam_space(domain)
@@ -159,9 +160,11 @@ middle = (x_pairs > 0.2 * L) & (x_pairs < 0.8 * L)
 w_error = abs(w_b[n // 2] / w_mid - 1)
 q_error = np.max(np.abs(q_c[middle] / (share * q0) - 1))
 if comm.rank == 0:
-    print(f"midspan deflection {w_b[n // 2] * 1e3:.4f} mm (closed form {w_mid * 1e3:.4f} mm, "
-          f"relative difference {w_error:.1e}); contact line load {q_c[middle].mean():.4f} N/m "
-          f"against q0 EI_a/(EI_a + EI_b) = {share * q0:.4f} N/m (largest difference {q_error:.1e})")  # fmt: skip
+    print(
+        f"midspan deflection {w_b[n // 2] * 1e3:.4f} mm (closed form {w_mid * 1e3:.4f} mm, "
+        f"relative difference {w_error:.1e}); contact line load {q_c[middle].mean():.4f} N/m "
+        f"against q0 EI_a/(EI_a + EI_b) = {share * q0:.4f} N/m (largest difference {q_error:.1e})"
+    )
 assert w_error < 1e-3 and q_error < 1e-2
 assert np.max(np.abs(w_a - w_b)) < 1e-6 * w_mid * 1e3  # together: the gap is q_c/k ~ 2 nm
 

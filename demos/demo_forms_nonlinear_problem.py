@@ -144,9 +144,13 @@ tip_node = locate_nodes(V, x0[-1])  # on the processes holding it, none elsewher
 tip_load = NodalLoad(tip_node, [[0.0, P, 0.0, 0.0, 0.0, 0.0]] * len(tip_node))
 newton = NewtonOptions(atol=1e-8, rtol=1e-10)
 strand_problem = StrandNonlinearProblem(
-    ReissnerBeam(w_s, section).residual(), w_s, [bc], terms=[tip_load], options=newton,
+    ReissnerBeam(w_s, section).residual(),
+    w_s,
+    [bc],
+    terms=[tip_load],
+    options=newton,
     petsc_options_prefix="strand_beam_",
-)  # fmt: skip
+)
 snes = strand_problem.solver
 say(f"strand's SNES: {snes.getType()}, options prefix {snes.getOptionsPrefix()}")
 for k in range(1, 11):

@@ -90,8 +90,9 @@ x_wire = np.c_[r * np.cos(phi), r * np.sin(phi), z]
 points = np.vstack([x_core, x_wire])
 cells = np.vstack([np.c_[0:n, 1 : n + 1], np.c_[0:n, 1 : n + 1] + n + 1])
 reach = 1e-6  # the largest initial gap of a pair (m): the wire lies on the core
-stencils = candidate_stencils(points, cells, range(n + 1), range(n + 1, 2 * n + 2), r_c, r_w,
-                              reach, line=True)  # fmt: skip
+stencils = candidate_stencils(
+    points, cells, range(n + 1), range(n + 1, 2 * n + 2), r_c, r_w, reach, line=True
+)
 partitioner = slab_partitioner(points[:, 2], cells, [stencils])
 V = beam_space(polyline_mesh(comm, points, cells, partitioner))
 core, wire = locate_nodes(V, x_core), locate_nodes(V, x_wire)
@@ -181,8 +182,10 @@ inner = (s_pairs > 0.05) & (s_pairs < S - 0.05)
 q = in_order(contact.state.force / pairs.tributary)
 q_error = np.max(np.abs(q[inner] / (T0 * kappa) - 1))
 if comm.rank == 0:
-    print(f"tension T0 = {T0:.2f} N; line load {q[inner].mean():.1f} N/m against T0 sin²α/r = "
-          f"{T0 * kappa:.1f} N/m (largest relative difference {q_error:.1e})")  # fmt: skip
+    print(
+        f"tension T0 = {T0:.2f} N; line load {q[inner].mean():.1f} N/m against T0 sin²α/r = "
+        f"{T0 * kappa:.1f} N/m (largest relative difference {q_error:.1e})"
+    )
 assert q_error < 5e-3
 q_T0 = q.copy()
 
@@ -205,8 +208,10 @@ T_exact = np.maximum(T0, TB * np.exp(-mu * kappa * (S - s_cell)))
 away = np.abs(s_cell - front) > 0.01  # the elastic slip rounds the front over a few cells
 T_error = np.max(np.abs(T_cell[away] - T_exact[away])) / TB
 if comm.rank == 0:
-    print(f"T_B = {TB:.1f} N (aim {aim:.1f} N); slip front at s = {front * 1e3:.1f} mm; "
-          f"largest |T − T_capstan| / T_B = {T_error:.1e}")  # fmt: skip
+    print(
+        f"T_B = {TB:.1f} N (aim {aim:.1f} N); slip front at s = {front * 1e3:.1f} mm; "
+        f"largest |T − T_capstan| / T_B = {T_error:.1e}"
+    )
 assert T_error < 1e-2
 
 # ## Pictures

@@ -165,8 +165,10 @@ x_exact, y_exact = np.sin(kappa * L) / kappa, (1 - np.cos(kappa * L)) / kappa
 rotation_error = np.max(np.abs(rotation - kappa * L) / (kappa * L))
 position_error = np.max(np.hypot(x_tip - x_exact, y_tip - y_exact)) / L
 if comm.rank == 0:
-    print(f"{len(steps)} steps; largest relative error of the tip rotation {rotation_error:.1e}, "
-          f"of the tip position {position_error:.1e} (sagitta bound {(np.pi / n_cells) ** 2 / 24:.1e})")  # fmt: skip
+    print(
+        f"{len(steps)} steps; largest relative error of the tip rotation {rotation_error:.1e}, "
+        f"of the tip position {position_error:.1e} (sagitta bound {(np.pi / n_cells) ** 2 / 24:.1e})"
+    )
 assert rotation_error < 1e-6
 assert position_error < (np.pi / n_cells) ** 2 / 24 * 1.1
 
@@ -185,8 +187,12 @@ if comm.rank == 0:
     ax1.plot(k, EI_max * k, "k:", label="stick slope EI_max")
     ax1.plot(k, EI_min * k + (EI_max - EI_min) * kappa_b, "k--", label="slip slope EI_min")
     ax1.plot(rotation / L, M, "o", label="finite elements")
-    ax1.set(xlabel="curvature κ (1/m)", ylabel="moment M (N m)", ylim=(0, 1.2 * M_max),
-            title="moment–curvature of the section law")  # fmt: skip
+    ax1.set(
+        xlabel="curvature κ (1/m)",
+        ylabel="moment M (N m)",
+        ylim=(0, 1.2 * M_max),
+        title="moment–curvature of the section law",
+    )
     ax1.legend()
     ax2.plot(x_exact, y_exact, "k-", label="closed form")
     ax2.plot(x_tip, y_tip, "o", label="finite elements")

@@ -154,8 +154,10 @@ peak = int(np.argmax(P))  # the end of the first leg, at +1.5 kN
 secant = M[: peak + 1] / kappa[: peak + 1]
 unloading = (M[peak] - M[peak + 1]) / (kappa[peak] - kappa[peak + 1])
 last_loading = (M[peak] - M[peak - 1]) / (kappa[peak] - kappa[peak - 1])
-say(f"M/κ along the first leg: {secant[0]:.0f} → {secant[-1]:.0f} N m² (bounds {ei_min:.1f}, "
-    f"{ei_max:.0f}); at the reversal {unloading:.0f} N m² against {last_loading:.0f} before it")  # fmt: skip
+say(
+    f"M/κ along the first leg: {secant[0]:.0f} → {secant[-1]:.0f} N m² (bounds {ei_min:.1f}, "
+    f"{ei_max:.0f}); at the reversal {unloading:.0f} N m² against {last_loading:.0f} before it"
+)
 assert np.all((secant > ei_min) & (secant < ei_max)), secant
 assert np.all(np.diff(secant) < 0), secant
 assert unloading > 1.5 * last_loading

@@ -33,9 +33,11 @@ def quick_run(tmp_path_factory):
         props = [props.GetItemAsObject(i) for i in range(props.GetNumberOfItems())]
         rulers = [p for p in props if p.IsA("vtkAxisActor2D")]
         pictures[Path(path).name] = {
-            "title": tuple(box), "text": title.GetInput(), "window": tuple(plotter.window_size),
+            "title": tuple(box),
+            "text": title.GetInput(),
+            "window": tuple(plotter.window_size),
             "rulers": [(r.GetTitle(), r.GetRange()) for r in rulers],
-        }  # fmt: skip
+        }
         return save(plotter, path)
 
     folder = tmp_path_factory.mktemp("quick") / "out"

@@ -39,8 +39,14 @@ def _env() -> dict[str, str]:
 
 
 def _run(args: list[str], cwd: Path, timeout: float) -> subprocess.CompletedProcess:
-    done = subprocess.run([sys.executable, *args], cwd=cwd, env=_env(), capture_output=True,
-                          text=True, timeout=timeout)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, *args],
+        cwd=cwd,
+        env=_env(),
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
     assert done.returncode == 0, done.stderr[-3000:]
     return done
 
@@ -107,8 +113,9 @@ def test_wire_count_quick_runs(tmp_path):
 
 def test_the_stamp_names_date_commit_cores_and_command(harness):
     line = harness.stamp(["python", "benchmarks/x.py", "--quick"])
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()  # fmt: skip
+    commit = subprocess.run(
+        ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+    ).stdout.strip()
     assert re.fullmatch(
         rf"\d{{4}}-\d\d-\d\d \d\d:\d\d, commit {commit}( \(modified\))?, {os.cpu_count()} cores, "
         r"`python benchmarks/x.py --quick`",
@@ -119,12 +126,17 @@ def test_the_stamp_names_date_commit_cores_and_command(harness):
 def test_tables_markdown_and_plain(harness):
     rows = [["a", 1, "2.50"], ["bbb", 10, "x"]]
     assert harness.table(rows, ["name", "n", "v"]).splitlines() == [
-        "| name | n | v |", "|---|---|---|", "| a | 1 | 2.50 |", "| bbb | 10 | x |"
-    ]  # fmt: skip
+        "| name | n | v |",
+        "|---|---|---|",
+        "| a | 1 | 2.50 |",
+        "| bbb | 10 | x |",
+    ]
     assert harness.table(rows[:1], ["name", "n", "v"], head=False) == "| a | 1 | 2.50 |"
     assert harness.table(rows, ["name", "n", "v"], plain=True).splitlines() == [
-        "name  n    v", "a     1 2.50", "bbb  10    x"
-    ]  # fmt: skip
+        "name  n    v",
+        "a     1 2.50",
+        "bbb  10    x",
+    ]
     with pytest.raises(ValueError, match="2 cells under 3 columns"):
         harness.table([["a", 1]], ["name", "n", "v"])
 
@@ -135,7 +147,8 @@ def test_peak_memory_is_this_process_in_mib(harness):
 
 def test_variants_run_each_in_a_process_of_its_own(harness, tmp_path):
     script = tmp_path / "variants.py"
-    script.write_text(textwrap.dedent("""\
+    script.write_text(
+        textwrap.dedent("""\
         import os, sys
         from harness import print_result
         name = sys.argv[sys.argv.index("--one") + 1]
@@ -143,7 +156,8 @@ def test_variants_run_each_in_a_process_of_its_own(harness, tmp_path):
             raise SystemExit("no good")
         print("noise first")
         print_result({"name": name, "args": sys.argv[1:-2], "pid": os.getpid()})
-        """))  # fmt: skip
+        """)
+    )
     env = dict(os.environ, PYTHONPATH=str(BENCHMARKS))
     rows = harness.run_variants(script, ["a", "b"], ["--quick"], env=lambda name: env)
     assert [r["name"] for r in rows.values()] == ["a", "b"]

@@ -45,9 +45,11 @@ def bent(cable, contact: ContactSettings, curvatures, length=0.3, tension=10e3, 
     tension."""
     geometry = build_geometry(cable, length, 4e-3)
     problem = StrandProblem(
-        geometry, contact, NewtonOptions(atol=1e-3, max_it=15),
+        geometry,
+        contact,
+        NewtonOptions(atol=1e-3, max_it=15),
         setup=partial(UniformBendingTest, zone=length / 3),
-    )  # fmt: skip
+    )
     setup = problem.setup
     LoadStepper(problem.solver, tension, tension / 64).ramp(
         partial(setup.set, "tension"), 0.0, tension
@@ -119,9 +121,14 @@ def test_full_stick_reaches_the_plane_section_stiffness_on_a_line_contact():
     tangential compliance makes the same strand markedly softer."""
     cable = seven_wire(friction=5.0)
     _, ei_max = bending_stiffness_bounds(cable)
-    stiff = [zb.moment_zone_middle / zb.curvature
-             for zb, _ in bent(cable, ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8),
-                               [0.002, 0.005])]  # fmt: skip
+    stiff = [
+        zb.moment_zone_middle / zb.curvature
+        for zb, _ in bent(
+            cable,
+            ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8),
+            [0.002, 0.005],
+        )
+    ]
     assert stiff[0] == pytest.approx(ei_max, rel=0.1), (stiff, ei_max)
     assert stiff[1] == pytest.approx(stiff[0], rel=1e-3)  # linear: no slip
     soft = next(bent(cable, ContactSettings(same_layer="off", compliance="penalty"), [0.002]))[0]
@@ -139,9 +146,13 @@ def test_full_stick_with_crossings_is_limited_by_the_beams_not_the_contacts():
     cable = nineteen_wire(friction=5.0)
     _, ei_max = bending_stiffness_bounds(cable)
     slopes = []
-    for contact in (ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8),
-                    ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-9),
-                    ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8, k_point=5e9, k_line=5e11)):  # fmt: skip
+    for contact in (
+        ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8),
+        ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-9),
+        ContactSettings(
+            same_layer="off", compliance="penalty", g_lim=5e-8, k_point=5e9, k_line=5e11
+        ),
+    ):
         zb = next(bent(cable, contact, [0.002]))[0]
         slopes.append(zb.moment_zone_middle / zb.curvature)
     print(slopes, ei_max)
@@ -160,8 +171,11 @@ def full_stick_fields(cable):
     law = StickSlipLaw(cable, 10e3)
     plane = np.array([lay.K * lay.r for lay in law.layers])
     cells = cell_results(problem.model, problem.setup.direction)
-    return zb, law, zone_layer_fields(cells, base[0], problem.setup.measuring_zone, zb.curvature,
-                                      plane)  # fmt: skip
+    return (
+        zb,
+        law,
+        zone_layer_fields(cells, base[0], problem.setup.measuring_zone, zb.curvature, plane),
+    )
 
 
 def test_in_full_stick_the_wires_roll_on_their_ties_as_the_estimate_says():
@@ -195,8 +209,12 @@ def test_with_the_spin_held_full_stick_nears_plane_sections(monkeypatch):
 
     def stiff_torsion(cmesh):
         section = layer_section(cmesh)
-        return CircularSection(section.d, section.E, section.nu,
-                               torsional_stiffness=100 * section.G * section.polar_moment)  # fmt: skip
+        return CircularSection(
+            section.d,
+            section.E,
+            section.nu,
+            torsional_stiffness=100 * section.G * section.polar_moment,
+        )
 
     monkeypatch.setattr(strand.model.model, "layer_section", stiff_torsion)
     cable = nineteen_wire(friction=5.0)
@@ -244,8 +262,10 @@ def test_tensioned_beam_matches_its_closed_form_and_the_reference_deflections():
         assert beam.deflection(4300.0) == pytest.approx(
             clamped_deflection(4300.0, 40e3, 1.0, EI), rel=1e-6
         )
-    for rule, expected in (("own_tension", [4.52, 10.09, 22.93]),
-                           ("cumulative", [3.09, 8.48, 21.25])):  # fmt: skip
+    for rule, expected in (
+        ("own_tension", [4.52, 10.09, 22.93]),
+        ("cumulative", [3.09, 8.48, 21.25]),
+    ):
         beam = TensionedBeam(1.0, 40e3, StickSlipLaw(cardinal(), 40e3, rule).curvature)
         got = [1e3 * beam.deflection(P) for P in (1000.0, 2000.0, 4300.0)]
         assert np.allclose(got, expected, atol=0.1), (rule, got)

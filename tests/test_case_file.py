@@ -43,7 +43,7 @@ def same_case(a, b) -> bool:
             "steps": {"stall": False, "balance": 0.0},
             "mesh": {"length": 0.5, "h_max": 3e-3},
         },
-    ],  # fmt: skip
+    ],
 )
 def test_case_toml_reads_back_to_the_same_case(tmp_path, data):
     """Every section, the cable inline and the version, as TOML that reads back to an equal

@@ -93,15 +93,20 @@ def test_run_help_lists_every_setting_of_every_section():
     from strand.app.settings import KIND_SECTIONS, SECTIONS
     from strand.app.settings_reference import default_toml
 
-    done = subprocess.run([sys.executable, "-m", "strand.app", "run", "--help"],
-                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-m", "strand.app", "run", "--help"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     text = done.stdout
     blocks = dict(re.findall(r"^\[(\w+)\]\n(.*?)(?=^\[|^\S|\Z)", text, re.M | re.S))
     assert list(blocks) == list(SECTIONS)
     for section, cls in SECTIONS.items():
-        classes = [cls] + [getattr(k, KIND_SECTIONS[section]) for k in registered()
-                           if section in KIND_SECTIONS]  # fmt: skip
+        classes = [cls] + [
+            getattr(k, KIND_SECTIONS[section]) for k in registered() if section in KIND_SECTIONS
+        ]
         for f in (f for c in classes for f in fields(c) if f.name != "by_kind"):
             key = rf"^  {f.name} = {re.escape(default_toml(f))}(\s|$)"
             assert re.search(key, blocks[section], re.M), (section, f.name)
@@ -110,8 +115,9 @@ def test_run_help_lists_every_setting_of_every_section():
     assert "minutes" not in text  # the main job's time is the README's to state
 
 
-def test_a_case_that_fails_while_built_leaves_the_folder_as_it_was(tmp_path, seven, capsys,
-                                                                   monkeypatch):  # fmt: skip
+def test_a_case_that_fails_while_built_leaves_the_folder_as_it_was(
+    tmp_path, seven, capsys, monkeypatch
+):
     """A run writes into its folder only once its strand is built: a case refused while it is
     built (here the finite-element problem's own refusal) creates no folder and keeps an earlier
     run's files even under --overwrite, so the corrected run goes into the same folder."""
@@ -159,13 +165,27 @@ def test_set_reaches_into_the_cable(seven):
     """``--set cable.core.<key>``, ``cable.layer.<n>.<key>`` (or ``cable.layer[n].<key>``) and
     ``cable.name`` edit the case's cable, a table, a file or a built-in one, and nothing else."""
     plain = load_case(seven)
-    case = load_case(seven, ["cable.core.nu=0.28", "cable.layer.1.E=200e9",
-                             "cable.layer[1].friction=0.4", 'cable.name="stiffer"'])  # fmt: skip
+    case = load_case(
+        seven,
+        [
+            "cable.core.nu=0.28",
+            "cable.layer.1.E=200e9",
+            "cable.layer[1].friction=0.4",
+            'cable.name="stiffer"',
+        ],
+    )
     core, layer = case.cable.layers
     assert (core.wire.nu, layer.wire.E, layer.friction, case.cable.name) == (
-        0.28, 200e9, 0.4, "stiffer")  # fmt: skip
+        0.28,
+        200e9,
+        0.4,
+        "stiffer",
+    )
     assert (core.wire.E, layer.wire.nu, layer.lay_angle) == (
-        plain.cable.layers[0].wire.E, 0.3, plain.cable.layers[1].lay_angle)  # fmt: skip
+        plain.cable.layers[0].wire.E,
+        0.3,
+        plain.cable.layers[1].lay_angle,
+    )
     assert case.mesh == plain.mesh and case.load == plain.load
     cardinal = load_case(None, ["cable.layer.4.E=60e9"])  # the built-in default's cable
     assert [lay.wire.E for lay in cardinal.cable.layers] == [210e9, 180e9, 65e9, 65e9, 60e9]
@@ -211,13 +231,19 @@ def test_ctrl_c_stops_at_the_last_converged_step_and_keeps_everything(tmp_path):
     """Ctrl-C during the cycle: the run stops at a converged step, writes its summary (saying it
     was interrupted), keeps every step, exits with 130 and no traceback."""
     case = tmp_path / "seven.toml"
-    case.write_text(SEVEN_WIRE.replace("lateral = 100.0", "lateral = 5.0")  # many small steps
-                    .replace("plots = false", "plots = true\nfields = false"))  # fmt: skip
+    case.write_text(
+        SEVEN_WIRE.replace("lateral = 100.0", "lateral = 5.0").replace(  # many small steps
+            "plots = false", "plots = true\nfields = false"
+        )
+    )
     out = tmp_path / "out"
     run = subprocess.Popen(
         [sys.executable, "-m", "strand.app", "run", str(case), "--out", str(out)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path,
-    )  # fmt: skip
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=tmp_path,
+    )
     lines = []
     deadline = time.monotonic() + 120
     for line in run.stdout:

@@ -85,9 +85,20 @@ def crossed_pair(
     t0 = np.repeat(np.stack([ta, tb])[None], n_pairs, 0)
     full = np.full(n_pairs, 1.0)
     laws = pair_laws(compliance, line, angle, n_pairs)
-    return ContactGroup(stencils, X, line, R_A * full, R_B * full, n0, laws[0],
-                        friction_law=laws[1], normal=normal, tangent0=t0, slip=slip,
-                        offset=offset * full if offset else None)  # fmt: skip
+    return ContactGroup(
+        stencils,
+        X,
+        line,
+        R_A * full,
+        R_B * full,
+        n0,
+        laws[0],
+        friction_law=laws[1],
+        normal=normal,
+        tangent0=t0,
+        slip=slip,
+        offset=offset * full if offset else None,
+    )
 
 
 @pytest.mark.parametrize(("normal", "line"), KINDS)
@@ -122,18 +133,23 @@ def test_gap_hessian_matches_finite_differences(normal, line):
     ("normal", "line", "compliance", "slip", "offset"),
     [(n, line, "penalty", "surface", 0.0) for n, line in KINDS]
     + [("director", line, "hertz", "surface", 0.0) for line in (False, True)]
-    + [(n, line, c, "centreline", 0.0) for n in ("frozen", "director") for line in (False, True)
-       for c in ("penalty", "hertz")]
+    + [
+        (n, line, c, "centreline", 0.0)
+        for n in ("frozen", "director")
+        for line in (False, True)
+        for c in ("penalty", "hertz")
+    ]
     + [("director", True, c, "surface", 1.5e-3) for c in ("penalty", "hertz")],
-)  # fmt: skip
+)
 def test_pair_tangent_matches_finite_differences_open_stick_slip(
     normal, line, compliance, slip, offset
 ):
     """Residual derivatives in the three states, after a committed step with random rotations
     (line pairs also with b facing a 1.5 mm from node a: the same-layer pairs' "node" stencil)."""
     rng = np.random.default_rng(7)
-    group = crossed_pair(normal, line, np.radians(25), compliance=compliance, slip=slip,
-                         offset=offset)  # fmt: skip
+    group = crossed_pair(
+        normal, line, np.radians(25), compliance=compliance, slip=slip, offset=offset
+    )
     P, k = group.stencils.shape
     w = np.zeros((P * k, 6))
     w[:, 3:] = rng.normal(scale=0.05, size=(P * k, 3))
@@ -352,8 +368,10 @@ def test_small_rigid_rotation_makes_no_slip():
 def _committed_pairs(line: bool, turned: float):
     """A surface-slip and a centre-line-slip pair, pressed and committed with their nodes turned
     by random rotations of up to ``turned`` rad."""
-    groups = [crossed_pair("director", line, np.radians(35), n_pairs=1, slip=s)
-              for s in ("surface", "centreline")]  # fmt: skip
+    groups = [
+        crossed_pair("director", line, np.radians(35), n_pairs=1, slip=s)
+        for s in ("surface", "centreline")
+    ]
     k = groups[0].stencils.shape[1]
     w = np.zeros((k, 6))
     w[1, 2] = -3e-6
@@ -593,10 +611,17 @@ def test_a_diverged_newton_under_friction_is_cut_not_accepted():
         bcs.append(fem.dirichletbc(0.0, (6 * upper_ends + c).astype(np.int32), V.sub(c)))
     a, b = n // 2, n + 1 + n // 2
     group = ContactGroup(
-        i2b[[a, b]][None], pts[[a, b]][None], False, [R_A], [R_A], [[0, 0, 1.0]],
-        PenaltyLaw(np.array([K_N])), friction_law=ElasticSlip(np.array([MU]), G_LIM),
-        normal="director", tangent0=np.array([[[1.0, 0, 0], [0, 1.0, 0]]]),
-    )  # fmt: skip
+        i2b[[a, b]][None],
+        pts[[a, b]][None],
+        False,
+        [R_A],
+        [R_A],
+        [[0, 0, 1.0]],
+        PenaltyLaw(np.array([K_N])),
+        friction_law=ElasticSlip(np.array([MU]), G_LIM),
+        normal="director",
+        tangent0=np.array([[[1.0, 0, 0], [0, 1.0, 0]]]),
+    )
     press = NodalLoad([i2b[b]], [[0, 0, -2.0, 0, 0, 0]], 1.0)
     drag = NodalLoad([i2b[b]], [[1.0, 0, 0, 0, 0, 0]], 0.0)
     options = NewtonOptions(atol=1e-7)
@@ -612,8 +637,9 @@ def test_a_diverged_newton_under_friction_is_cut_not_accepted():
     solver.rollback()
 
     committed = []
-    stepper = LoadStepper(solver, first_step=0.6 * mu_p, min_step=0.6 * mu_p / 2**6,
-                          on_step=committed.append)  # fmt: skip
+    stepper = LoadStepper(
+        solver, first_step=0.6 * mu_p, min_step=0.6 * mu_p / 2**6, on_step=committed.append
+    )
     with pytest.raises(LoadStepFailure, match="no convergence"):
         stepper.ramp(lambda f: setattr(drag, "factor", f), 0.0, 1.5 * mu_p, "drag")
     assert committed and all(r.load < mu_p for r in committed)

@@ -89,8 +89,9 @@ def test_candidate_stencils_on_the_input_arrays_are_the_pairs_of_the_mesh():
         V = beam_space(polyline_mesh(MPI.COMM_WORLD, pts, cells))
         a, b = locate_nodes(V, pts[: n + 1]), locate_nodes(V, pts[n + 1 :])
         reach = 1e-6 if line else 1e-3  # no node of b at the crossing
-        rows = candidate_stencils(pts, cells, range(n + 1), range(n + 1, n + n_b + 2), R, R,
-                                  reach, line=line)  # fmt: skip
+        rows = candidate_stencils(
+            pts, cells, range(n + 1), range(n + 1, n + n_b + 2), R, R, reach, line=line
+        )
         gaps = -1e-6 * np.arange(1, len(rows) + 1)
         pairs = candidate_pairs(V, a, b, R, R, reach, line=line, initial_gap=gaps)
         assert len(rows) == len(pairs) == (n_b + 1 if line else 1)
@@ -317,8 +318,10 @@ def test_beams_pressed_into_each_other_at_t0_start_with_the_default_newton_optio
 
     def supports(ends_a_lift):
         zero = [lambda u: fem.dirichletbc(np.zeros(6), b[[0, -1]], u.function_space)]
-        ends = [lambda u, c=c: fem.dirichletbc(0.0, 6 * a[[0, -1]] + c, V.sub(c)) for c in
-                (0, 1, 3, 4, 5)]  # fmt: skip
+        ends = [
+            lambda u, c=c: fem.dirichletbc(0.0, 6 * a[[0, -1]] + c, V.sub(c))
+            for c in (0, 1, 3, 4, 5)
+        ]
         ends.append(lambda u: fem.dirichletbc(ends_a_lift, 6 * a[[0, -1]] + 2, V.sub(2)))
         return zero, ends
 
@@ -346,8 +349,9 @@ def test_beams_pressed_into_each_other_at_t0_start_with_the_default_newton_optio
         # gives P
         assert state.gap[0] == pytest.approx(-overlap + d_b - u_a, abs=1e-5 * overlap)
         assert law.force(state.gap)[0][0] == pytest.approx(P, rel=1e-12)
-        np.testing.assert_allclose(w.x.array.reshape(-1, 6)[[a[20], b[20]], 2], [u_a, d_b],
-                                   rtol=1e-5)  # fmt: skip
+        np.testing.assert_allclose(
+            w.x.array.reshape(-1, 6)[[a[20], b[20]], 2], [u_a, d_b], rtol=1e-5
+        )
     solver.destroy()
 
 
@@ -375,8 +379,9 @@ def test_friction_starts_each_step_from_the_last_commit():
         beam = ReissnerBeam(w, CircularSection(2 * R, E, NU))
         problem = NonlinearProblem(beam.residual(), w, bcs, terms=[contact, press])
         steps = [(press, "factor", f, commits != "none") for f in (0.25, 0.5, 0.75, 1.0)]
-        steps += [(shear, "value", s, commits == "every step")
-                  for s in 1e-6 * np.r_[2:31:2, 28:19:-2]]  # fmt: skip
+        steps += [
+            (shear, "value", s, commits == "every step") for s in 1e-6 * np.r_[2:31:2, 28:19:-2]
+        ]
         for target, name, value, commit in steps:
             setattr(target, name, value)
             assert problem.solve().converged

@@ -102,8 +102,12 @@ def test_demo_runs_on_2_ranks(demo, tmp_path):
 def test_the_numbers_are_compared_to_their_last_digit():
     assert_same_numbers("v/L = 0.81061, 4 steps, 2.6e-3", "v/L = 0.81062, 4 steps, 2.7e-3", "ok")
     assert_same_numbers("residual 3.1e-12 N", "residual 8.0e-13 N", "round-off")
-    for printed, expected in (("0.81061", "0.81063"), ("5 steps", "6 steps"), ("2.6e-3", "2.6e-4"),
-                              ("1.0 and 2.0", "1.0")):  # fmt: skip
+    for printed, expected in (
+        ("0.81061", "0.81063"),
+        ("5 steps", "6 steps"),
+        ("2.6e-3", "2.6e-4"),
+        ("1.0 and 2.0", "1.0"),
+    ):
         with pytest.raises(AssertionError):
             assert_same_numbers(printed, expected, "differs")
     progress = "step 3: 12 iterations, 1.5 s\nP = 300 N\n61 wires; 2 MPI ranks"

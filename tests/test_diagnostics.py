@@ -94,9 +94,18 @@ def test_the_bending_summary_tables_the_wire_fields_per_layer(tmp_path):
     carries the spin and torque of the cell results."""
     path = tmp_path / "seven.toml"
     path.write_text(SEVEN_WIRE)
-    case = load_case(path, ["output.plots=false", "output.fields=false", 'load.kind="bending"',
-                            "load.zone=0.04", "load.curvature=0.5", "steps.curvature=0.1",
-                            "steps.curvature_max=0.2"])  # fmt: skip
+    case = load_case(
+        path,
+        [
+            "output.plots=false",
+            "output.fields=false",
+            'load.kind="bending"',
+            "load.zone=0.04",
+            "load.curvature=0.5",
+            "steps.curvature=0.1",
+            "steps.curvature_max=0.2",
+        ],
+    )
     out = tmp_path / "out"
     result = run_case(case, out, stream=open(tmp_path / "log.txt", "w"))  # noqa: SIM115
     assert not result.failure
@@ -115,6 +124,5 @@ def test_the_bending_summary_tables_the_wire_fields_per_layer(tmp_path):
     sections = read_history(out / "wire_sections.h5")
     peak = list(sections.numbers).index(result.peak_step.number)
     np.testing.assert_allclose(sections["spin"][peak], result.peak.spin, rtol=1e-5, atol=1e-9)
-    np.testing.assert_allclose(sections["torque"][peak], result.peak.torque, rtol=1e-5,
-                               atol=1e-6)  # fmt: skip
+    np.testing.assert_allclose(sections["torque"][peak], result.peak.torque, rtol=1e-5, atol=1e-6)
     assert np.abs(result.peak.spin).max() > 1e-4

@@ -26,18 +26,39 @@ def built(tmp_path_factory):
     pytest.importorskip("sphinx-mathjax-offline")
     out = tmp_path_factory.mktemp("html")
     run = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-E", "-W", "--keep-going", "-q", "-b", "html",
-         str(DOCS), str(out)],
-        capture_output=True, text=True, timeout=300,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-E",
+            "-W",
+            "--keep-going",
+            "-q",
+            "-b",
+            "html",
+            str(DOCS),
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert run.returncode == 0, run.stderr[-3000:]
     return out
 
 
 def test_docs_build_without_warnings_and_document_the_api(built):
     api = "".join(p.read_text() for p in (built / "api").glob("*.html"))
-    for name in ("NonlinearProblem", "ContactGroup", "HertzPointLaw", "StickSlipLaw", "run_case",
-                 "prepare_results_folder", "ReissnerBeam", "load_case"):  # fmt: skip
+    for name in (
+        "NonlinearProblem",
+        "ContactGroup",
+        "HertzPointLaw",
+        "StickSlipLaw",
+        "run_case",
+        "prepare_results_folder",
+        "ReissnerBeam",
+        "load_case",
+    ):
         assert f'id="{name}"' in api or f".{name}" in api, name
     theory = (built / "theory.html").read_text()
     assert "Stick–slip bending law" in theory and "How far small sliding holds" in theory
@@ -71,9 +92,10 @@ def test_attribute_docs_keep_their_first_clause(built):
     types = [
         re.sub(r"<[^>]+>", "", t).strip()
         for page in (built / "api").glob("*.html")
-        for t in re.findall(r'Type<span class="colon">:</span></dt>\s*<dd[^>]*>(.*?)</dd>',
-                            page.read_text(), re.S)
-    ]  # fmt: skip
+        for t in re.findall(
+            r'Type<span class="colon">:</span></dt>\s*<dd[^>]*>(.*?)</dd>', page.read_text(), re.S
+        )
+    ]
     assert types  # annotations still give types
     assert [t for t in types if re.search(r"\b(the|a|an|of|in|at|to)\b", t)] == []
 
@@ -81,9 +103,10 @@ def test_attribute_docs_keep_their_first_clause(built):
 def test_every_module_has_an_api_page():
     """Each module of strand and forms is on an API page, itself or as a member of its package."""
     documented = {
-        m for page in (DOCS / "api").glob("*.md")
+        m
+        for page in (DOCS / "api").glob("*.md")
         for m in re.findall(r"automodule:: ([\w.]+)", page.read_text())
-    }  # fmt: skip
+    }
     missing = []
     for path in [*ROOT.glob("strand/**/*.py"), *ROOT.glob("forms/*.py")]:
         module = ".".join(path.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__")
@@ -102,12 +125,16 @@ def test_the_settings_reference_lists_every_setting_with_its_default(built):
     page = (built / "_generated" / "settings.html").read_text()
     for section, cls in SECTIONS.items():
         assert f"[{section}]" in page, section
-        classes = [cls] + [getattr(k, KIND_SECTIONS[section]) for k in registered()
-                           if section in KIND_SECTIONS]  # fmt: skip
+        classes = [cls] + [
+            getattr(k, KIND_SECTIONS[section]) for k in registered() if section in KIND_SECTIONS
+        ]
         for c in classes:
             for f in fields(c):
                 if f.name != "by_kind":
-                    assert f"<code class=\"docutils literal notranslate\"><span class=\"pre\">{f.name}</span>" in page, (section, f.name)  # fmt: skip
+                    assert (
+                        f'<code class="docutils literal notranslate"><span class="pre">{f.name}</span>'
+                        in page
+                    ), (section, f.name)
     assert '<span class="pre">&quot;hertz&quot;</span>' in page  # a default, as TOML
 
 
@@ -136,8 +163,12 @@ def _images(page: Path) -> list[Path]:
 
 def test_every_image_a_page_shows_is_in_the_build(built):
     shown = {page: _images(page) for page in built.rglob("*.html")}
-    missing = [(str(p.relative_to(built)), str(i)) for p, images in shown.items() for i in images
-               if not (i.is_file() and i.stat().st_size > 0)]  # fmt: skip
+    missing = [
+        (str(p.relative_to(built)), str(i))
+        for p, images in shown.items()
+        for i in images
+        if not (i.is_file() and i.stat().st_size > 0)
+    ]
     assert missing == []
     committed = {p.name for p in DOCS.glob("_static/**/*.png")}
     assert committed <= {i.name for images in shown.values() for i in images}
@@ -232,7 +263,7 @@ def test_the_repository_cites_its_own_theory_pages():
             "demos/*.py",
             "*.md",
             "strand/cable/data/*.toml",
-        )  # fmt: skip
+        )
         for p in ROOT.glob(pattern)
         if p.name != "test_docs.py"
         and any(s in p.read_text() for s in ("physics.md", "physics notes"))

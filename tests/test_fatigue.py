@@ -55,8 +55,9 @@ def sheared_crossing(path):
     a, b = locate_nodes(V, x_a), locate_nodes(V, x_b)
     w = fem.Function(V)
     section = CircularSection(2 * R, E, NU)
-    contact = contact_terms(candidate_pairs(V, a, b, R, R, reach=1e-4), PenaltyLaw(K_N),
-                            ElasticSlip(MU, G_LIM))  # fmt: skip
+    contact = contact_terms(
+        candidate_pairs(V, a, b, R, R, reach=1e-4), PenaltyLaw(K_N), ElasticSlip(MU, G_LIM)
+    )
     shear = fem.Constant(V.mesh, 0.0)
     bcs = [fem.dirichletbc(shear, 6 * a, V.sub(0))]
     bcs += [fem.dirichletbc(0.0, 6 * a + c, V.sub(c)) for c in range(1, 6)]
@@ -68,8 +69,16 @@ def sheared_crossing(path):
 
     def record(_=None):
         h, st = contact.history, contact.state
-        rows.append((float(shear.value), st.force.copy(), st.traction.copy(), h.slip.copy(),
-                     h.sliding.copy(), h.work.copy()))  # fmt: skip
+        rows.append(
+            (
+                float(shear.value),
+                st.force.copy(),
+                st.traction.copy(),
+                h.slip.copy(),
+                h.sliding.copy(),
+                h.work.copy(),
+            )
+        )
 
     record()
     stepper = LoadStepper(solver, 2e-6, 1e-8, max_step=2e-6, on_step=record)
@@ -145,8 +154,9 @@ def test_contact_ellipse_against_hertzs_elliptic_integrals(deg):
     K, Ee = special.ellipk, special.ellipe  # of m = e²
     rx, ry = crossed_cylinders(R_AL, R_AL, np.radians(deg))
     A, B = 1 / (2 * rx), 1 / (2 * ry)
-    m = optimize.brentq(lambda m: (Ee(m) / (1 - m) - K(m)) / (K(m) - Ee(m)) - B / A, 1e-9,
-                        1 - 1e-12)  # fmt: skip
+    m = optimize.brentq(
+        lambda m: (Ee(m) / (1 - m) - K(m)) / (K(m) - Ee(m)) - B / A, 1e-9, 1 - 1e-12
+    )
     e_star = 1 / (2 * compliance(E_AL, NU_AL))
     force = 40.0
     # P = 2πab p₀/3 with p₀ = A E* e² a² / (b (K − E)) and b = a √(1 − e²)
@@ -174,8 +184,9 @@ def test_a_straight_wire_in_tension_or_in_bending_and_torsion_has_navier_and_sai
     D = fem.functionspace(c.mesh, ("DG", 0, (7,)))
     f = fem.Function(D)
     n, m = c.beam.spatial_force(), c.beam.spatial_moment()
-    f.interpolate(fem.Expression(ufl.as_vector([c.beam.N[0], *n, *m]),
-                                 D.element.interpolation_points))  # fmt: skip
+    f.interpolate(
+        fem.Expression(ufl.as_vector([c.beam.N[0], *n, *m]), D.element.interpolation_points)
+    )
     values = f.x.array.reshape(-1, 7)
     x, cells = c.mesh.geometry.x, c.mesh.geometry.dofmaps[0]
     tangent = np.diff(x[cells], axis=1)[:, 0]  # initial: the rotations stay below 5e-3
@@ -189,8 +200,7 @@ def test_a_straight_wire_in_tension_or_in_bending_and_torsion_has_navier_and_sai
     expected = F / A + M * (d / 2) / I * np.cos(psi)
     scale = F / A + M * (d / 2) / I
     np.testing.assert_allclose(sigma, np.tile(expected, (len(cells), 1)), atol=1e-3 * scale)
-    np.testing.assert_allclose(shear_stress(torque, d), T * (d / 2) / (2 * I),
-                               atol=1e-3 * scale)  # fmt: skip
+    np.testing.assert_allclose(shear_stress(torque, d), T * (d / 2) / (2 * I), atol=1e-3 * scale)
 
 
 # -- S–N and Miner ----------------------------------------------------------------------------
@@ -224,8 +234,9 @@ def test_a_repeating_sine_counts_its_periods_as_full_cycles(periods):
     s = A * np.sin(2 * np.pi * np.arange(20 * periods + 1) / 20)
     assert _counted(repeating_cycles(s)) == [(2 * A, 0.0, 1.0)] * periods
     once = _counted(rainflow_cycles(s))
-    assert once == sorted([(A, -A / 2, 0.5), (A, A / 2, 0.5)] + [(2 * A, 0.0, 0.5)]
-                          * (2 * periods - 1))  # fmt: skip
+    assert once == sorted(
+        [(A, -A / 2, 0.5), (A, A / 2, 0.5)] + [(2 * A, 0.0, 0.5)] * (2 * periods - 1)
+    )
 
 
 def test_repeating_cycles_of_the_saddle_cycle_and_of_two_blocks_by_hand():
@@ -238,8 +249,9 @@ def test_repeating_cycles_of_the_saddle_cycle_and_of_two_blocks_by_hand():
     c = repeating_cycles([0.0, 1.0, 0.0, -1.0, 0.0])
     assert _counted(c) == [(2.0, 0.0, 1.0)] and (c.start[0], c.end[0]) == (1, 3)
     t = np.arange(20) / 20
-    blocks = np.concatenate([np.tile(2 * np.sin(2 * np.pi * t), 10),
-                             np.tile(5 * np.sin(2 * np.pi * t), 3), [0.0]])  # fmt: skip
+    blocks = np.concatenate(
+        [np.tile(2 * np.sin(2 * np.pi * t), 10), np.tile(5 * np.sin(2 * np.pi * t), 3), [0.0]]
+    )
     assert _counted(repeating_cycles(blocks)) == [(4.0, 0.0, 1.0)] * 10 + [(10.0, 0.0, 1.0)] * 3
     assert rainflow_cycles(blocks).count.sum() == 13.5
 

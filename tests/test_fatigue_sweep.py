@@ -23,15 +23,20 @@ def test_a_sweep_gives_the_fatigue_figures_per_amplitude(tmp_path):
     crossings) in the free span."""
     path = tmp_path / "seven.toml"
     path.write_text(SEVEN_WIRE)
-    case = load_case(path, ["load.sweep=[150.0, 300.0]", "fatigue.end_zone=0.02",
-                            "output.fields=false"])  # fmt: skip
+    case = load_case(
+        path, ["load.sweep=[150.0, 300.0]", "fatigue.end_zone=0.02", "output.fields=false"]
+    )
     run_sweep(case, tmp_path / "sweep", stream=io.StringIO())
     with open(tmp_path / "sweep" / "sweep.csv") as f:
         rows = list(csv.DictReader(f))
     assert [r["amplitude_N"] for r in rows] == ["150", "300"]
     names = [f"stress_range_{z}_layer_{i}_MPa" for z in ("free", "clamp") for i in (0, 1)]
-    names += [f"worst_{k}{q}_{z}_{u}" for z in ("free", "clamp") for k in ("", "line_")
-              for q, u in (("f2", "MPa_J_per_m2"), ("slip_amplitude", "um"))]  # fmt: skip
+    names += [
+        f"worst_{k}{q}_{z}_{u}"
+        for z in ("free", "clamp")
+        for k in ("", "line_")
+        for q, u in (("f2", "MPa_J_per_m2"), ("slip_amplitude", "um"))
+    ]
     names += ["largest_damage_free", "largest_damage_clamp", "ps_ratio"]
     assert set(names) <= set(rows[0])
     text = (tmp_path / "sweep" / "sweep.txt").read_text()

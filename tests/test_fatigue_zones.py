@@ -47,8 +47,11 @@ def test_steel_wire_curves_are_eurocode_2s_prestressing_steel(key, at_knee, k2):
     gives N* at Δσ_Rsk, 1e5 at Δσ_Rsk 10^(1/5) and 1e8 at Δσ_Rsk 100^(−1/k2); σ_a is half Δσ."""
     curve = SN_CURVES[key]
     assert curve.material == "steel"
-    for cycles, stress_range in ((1e6, at_knee), (1e5, at_knee * 10 ** (1 / 5)),
-                                 (1e8, at_knee * 100 ** (-1 / k2))):  # fmt: skip
+    for cycles, stress_range in (
+        (1e6, at_knee),
+        (1e5, at_knee * 10 ** (1 / 5)),
+        (1e8, at_knee * 100 ** (-1 / k2)),
+    ):
         assert curve.life(0.5e6 * stress_range) == pytest.approx(cycles, rel=1e-9)
 
 
@@ -130,8 +133,11 @@ def test_steel_wires_are_assessed_and_a_layer_without_a_curve_reads_not_assessed
     r = fatigue_report(seven_wire_run, cable, 10e3, FatigueSettings(steel_sn_curve="none"))
     wires = _rows(seven_wire_run / "wires.csv")
     assert {w["sn_curve"] for w in wires} == {"not assessed"}
-    assert all(math.isnan(float(w[k])) for w in wires
-               for k in ("damage", "repetitions_to_failure", "damage_free_span"))  # fmt: skip
+    assert all(
+        math.isnan(float(w[k]))
+        for w in wires
+        for k in ("damage", "repetitions_to_failure", "damage_free_span")
+    )
     pairs = _rows(seven_wire_run / "crossings.csv")
     assert {p["damage_assessed"] for p in pairs} == {"not assessed"}
     assert all(math.isnan(float(p["damage"])) for p in pairs)
@@ -166,8 +172,11 @@ def test_hot_spots_and_damage_are_split_by_zone(seven_wire_run):
     w = r.wires
     np.testing.assert_allclose(w["damage"], np.maximum(w["damage_free"], w["damage_clamp"]))
     free = r.text.split("free span (")[1].split("clamp zone (")[0]
-    hot = [row for row in free.split("hot spots")[1].split("first wires")[0].splitlines()[2:]
-           if row.strip()]  # fmt: skip
+    hot = [
+        row
+        for row in free.split("hot spots")[1].split("first wires")[0].splitlines()[2:]
+        if row.strip()
+    ]
     assert len(hot) == 5 and all(0.02 <= float(line.split()[3]) <= 0.08 for line in hot)
     tension = strand_tension(sections)
     np.testing.assert_allclose(tension, 10e3, rtol=1e-2)
@@ -207,8 +216,11 @@ def test_the_quick_case_reports_its_free_span(quick_run):
     assert _intervals(text) == [(round(half, 5), round(0.3 - half, 4))]
     free = text.split(f"free span (z in [{half:.4g}, {0.3 - half:.4g}] m):\n")[1]
     free = free.split("clamp zone (")[0]
-    hot = [row for row in free.split("hot spots")[1].split("first wires")[0].splitlines()[2:]
-           if row.strip()]  # fmt: skip
+    hot = [
+        row
+        for row in free.split("hot spots")[1].split("first wires")[0].splitlines()[2:]
+        if row.strip()
+    ]
     assert len(hot) == 5 and all(half <= float(row.split()[3]) <= 0.3 - half for row in hot)
     assert "none" not in free and f"clamp zone (within {half:.4g} m of an end):" in text
 

@@ -69,8 +69,12 @@ def test_the_check_gives_the_verdict_and_writes_nothing(tmp_path):
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "notes.txt").write_text("not a run")
     (tmp_path / "file").write_text("")
-    refused = [(run, False), (tmp_path / "mine", True), (tmp_path / "file", False),
-               (tmp_path / "file" / "sub", False)]  # fmt: skip
+    refused = [
+        (run, False),
+        (tmp_path / "mine", True),
+        (tmp_path / "file", False),
+        (tmp_path / "file" / "sub", False),
+    ]
     for folder, overwrite in refused:
         before = contents(tmp_path)
         with pytest.raises(FolderError) as checked:

@@ -25,21 +25,38 @@ from strand_cases import SEVEN_WIRE, nineteen_wire
 def _seven_wire():
     """A 1+6 of equal 3.34 mm wires at 6.06°: its helices would overlap, so packed neighbours
     touch all round (a closed ring)."""
-    return cable_from_dict({
-        "name": "1+6",
-        "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
-        "layer": [{"wires": 6, "diameter": 3.34e-3, "E": 180e9, "nu": 0.3,
-                   "lay_angle": 6.06, "lay": "S", "friction": 0.5}],
-    })  # fmt: skip
+    return cable_from_dict(
+        {
+            "name": "1+6",
+            "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
+            "layer": [
+                {
+                    "wires": 6,
+                    "diameter": 3.34e-3,
+                    "E": 180e9,
+                    "nu": 0.3,
+                    "lay_angle": 6.06,
+                    "lay": "S",
+                    "friction": 0.5,
+                }
+            ],
+        }
+    )
 
 
-def _tensioned(same_layer: str, model: str = "small", stencil: str = "segment", geometry=None,
-               tension: float = 10e3):  # fmt: skip
+def _tensioned(
+    same_layer: str,
+    model: str = "small",
+    stencil: str = "segment",
+    geometry=None,
+    tension: float = 10e3,
+):
     """Layer pressure of ``geometry`` (default: a 0.15 m 1+6) pulled to ``tension`` (N)."""
     geometry = geometry or build_geometry(_seven_wire(), 0.15, 4e-3)
     settings = ContactSettings(same_layer=same_layer, model=model, same_layer_stencil=stencil)
-    problem = StrandProblem(geometry, settings,
-                            NewtonOptions(atol=1e-4, max_it=15), setup=SaddleTest)  # fmt: skip
+    problem = StrandProblem(
+        geometry, settings, NewtonOptions(atol=1e-4, max_it=15), setup=SaddleTest
+    )
     LoadStepper(problem.solver, tension / 2, tension / 10).ramp(
         partial(problem.setup.set, "tension"), 0.0, tension
     )
@@ -47,9 +64,13 @@ def _tensioned(same_layer: str, model: str = "small", stencil: str = "segment", 
     cells = cell_results(model)
     forces = layer_wire_forces(cells.layer, cells.z, cells.axial, geometry.length)
     return layer_pressure(
-        geometry, model.pair_results(), forces, model.positions(),
-        same_layer=model.same_layer_pairs, same_layer_state=model.same_layer_history(),
-    )  # fmt: skip
+        geometry,
+        model.pair_results(),
+        forces,
+        model.positions(),
+        same_layer=model.same_layer_pairs,
+        same_layer_state=model.same_layer_history(),
+    )
 
 
 def test_without_neighbours_the_core_takes_the_fibre_pressure():
@@ -108,10 +129,17 @@ def test_a_bending_run_reports_and_draws_where_the_pressure_goes(tmp_path):
     largest curvature in its summary, and ``layer_pressure.png``."""
     path = tmp_path / "seven.toml"
     path.write_text(SEVEN_WIRE.replace('same_layer = "off"', 'same_layer = "packed"'))
-    bending = ['load.kind="bending"', "load.curvature=0.05", "load.zone=0.04",
-               "steps.curvature=0.025", "steps.curvature_max=0.05", "load.cycle=[1.0]"]  # fmt: skip
-    case = load_case(path, [*bending, "output.fields=false", "fatigue.outputs=false",
-                            "output.plots=true"])  # fmt: skip
+    bending = [
+        'load.kind="bending"',
+        "load.curvature=0.05",
+        "load.zone=0.04",
+        "steps.curvature=0.025",
+        "steps.curvature_max=0.05",
+        "load.cycle=[1.0]",
+    ]
+    case = load_case(
+        path, [*bending, "output.fields=false", "fatigue.outputs=false", "output.plots=true"]
+    )
     result = run_case(case, tmp_path / "out", stream=io.StringIO())
     summary = (tmp_path / "out" / "summary.txt").read_text()
     print(summary[summary.index("where each layer") :])

@@ -46,8 +46,11 @@ def test_a_large_mesh_is_announced_with_its_size_before_it_is_built(tmp_path, mo
     assert elements > 10
     lines = text.splitlines()
     assert len(lines) == 1 and lines[0].startswith("strand: a large mesh:"), text
-    numbers = re.match(r"strand: a large mesh: ([\d,]+) elements, ([\d,]+) unknowns; .*roughly "
-                       r"([\d.e+-]+) GB", lines[0])  # fmt: skip
+    numbers = re.match(
+        r"strand: a large mesh: ([\d,]+) elements, ([\d,]+) unknowns; .*roughly "
+        r"([\d.e+-]+) GB",
+        lines[0],
+    )
     assert numbers, lines[0]
     assert int(numbers[1].replace(",", "")) == elements
     assert int(numbers[2].replace(",", "")) == unknowns

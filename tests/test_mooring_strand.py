@@ -70,11 +70,18 @@ def test_the_sources_layer_2_would_overlap_and_what_the_assumption_changes():
         "name": "source",
         "core": {"diameter": DIAMETERS[0], "E": E, "nu": 0.3, "friction": 0.3},
         "layer": [
-            {"wires": n, "diameter": d, "E": E, "nu": 0.3, "lay": "SZ"[i % 2], "friction": 0.3,
-             "lay_angle": a}
+            {
+                "wires": n,
+                "diameter": d,
+                "E": E,
+                "nu": 0.3,
+                "lay": "SZ"[i % 2],
+                "friction": 0.3,
+                "lay_angle": a,
+            }
             for i, (n, d, a) in enumerate(layers)
         ],
-    }  # fmt: skip
+    }
     with pytest.raises(CableError, match=r"layer\[2\].*fill 1\.01[67]"):
         cable_from_dict(data)
     c = judge120()

@@ -79,8 +79,9 @@ def _run_and_compare(
     outputs = {}
     for n in (1, *ranks):
         out = folder / f"{tag}{n}"
-        done = strand_run(n, ["run", *case, "--out", str(out), "--set", "output.plots=false"],
-                          folder)  # fmt: skip
+        done = strand_run(
+            n, ["run", *case, "--out", str(out), "--set", "output.plots=false"], folder
+        )
         assert done.returncode == 0, done.stderr[-3000:]
         steps = sum(1 for _ in open(out / "steps.csv")) - 1
         # progress printed once: one line per step, whatever the number of ranks
@@ -109,9 +110,18 @@ def test_seven_wire_saddle_is_the_same_on_1_2_and_3_ranks(seven_wire):
 @needs_mpirun
 @pytest.mark.slow
 def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seven_wire):
-    bending = ["--set", 'load.kind="bending"', "--set", "load.zone=0.04", "--set",
-               "load.curvature=0.5", "--set", "steps.curvature=0.1", "--set",
-               "steps.curvature_max=0.2"]  # fmt: skip
+    bending = [
+        "--set",
+        'load.kind="bending"',
+        "--set",
+        "load.zone=0.04",
+        "--set",
+        "load.curvature=0.5",
+        "--set",
+        "steps.curvature=0.1",
+        "--set",
+        "steps.curvature_max=0.2",
+    ]
     _run_and_compare(seven_wire, ["seven.toml", *bending], ranks=(3,), tag="bending")
     large = ["--set", 'contact.model="large"']
     _run_and_compare(seven_wire, ["seven.toml", *large], ranks=(2,), tag="large")
@@ -128,11 +138,21 @@ def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
     tolerance). So the runs converge to 1e-7 N on a fixed load path (no step growth); their
     last iterations then reach the round-off floor, so the iteration counts may differ by one
     and are not compared (measured: results within 2e-12)."""
-    same = ["--set", 'contact.same_layer="nominal"', "--set", "steps.balance=0", "--set",
-            "steps.tolerance=1e-7", "--set", "steps.max_iterations=20", "--set",
-            "steps.growth=1.0"]  # fmt: skip
-    _run_and_compare(seven_wire, ["seven.toml", *same], ranks=(2,), tag="same_layer",
-                     counts=("cuts",))  # fmt: skip
+    same = [
+        "--set",
+        'contact.same_layer="nominal"',
+        "--set",
+        "steps.balance=0",
+        "--set",
+        "steps.tolerance=1e-7",
+        "--set",
+        "steps.max_iterations=20",
+        "--set",
+        "steps.growth=1.0",
+    ]
+    _run_and_compare(
+        seven_wire, ["seven.toml", *same], ranks=(2,), tag="same_layer", counts=("cuts",)
+    )
 
 
 @needs_mpirun
@@ -142,11 +162,21 @@ def test_reuse_lu_is_the_same_on_1_and_2_ranks(seven_wire):
     directions differ by the ranks' round-off, and so may the GMRES iteration counts that
     decide when the LU is renewed; on a fixed load path solved to 1e-7 N the results agree
     all the same (the iteration counts are not compared)."""
-    reuse = ["--set", 'steps.iteration="reuse_lu"', "--set", "steps.balance=0", "--set",
-             "steps.tolerance=1e-7", "--set", "steps.max_iterations=20", "--set",
-             "steps.growth=1.0"]  # fmt: skip
-    _run_and_compare(seven_wire, ["seven.toml", *reuse], ranks=(2,), tag="reuse_lu",
-                     counts=("cuts",))  # fmt: skip
+    reuse = [
+        "--set",
+        'steps.iteration="reuse_lu"',
+        "--set",
+        "steps.balance=0",
+        "--set",
+        "steps.tolerance=1e-7",
+        "--set",
+        "steps.max_iterations=20",
+        "--set",
+        "steps.growth=1.0",
+    ]
+    _run_and_compare(
+        seven_wire, ["seven.toml", *reuse], ranks=(2,), tag="reuse_lu", counts=("cuts",)
+    )
 
 
 @needs_mpirun
@@ -156,9 +186,19 @@ def test_a_cardinal_piece_with_friction_is_the_same_on_1_2_and_3_ranks(tmp_path)
     leave soft modes, and the ranks agree to the balance tolerance, not to round-off (measured
     1.6e-6 in deflection on this piece); ``test_same_layer_pairs_are_the_same_on_1_and_2_ranks``
     compares same-layer pairs at a tight tolerance."""
-    case = ["cardinal", "--set", "mesh.length=0.1", "--set", "load.lateral=1000.0", "--set",
-            "steps.lateral=250.0", "--set", "steps.lateral_max=250.0", "--set",
-            'contact.same_layer="off"']  # fmt: skip
+    case = [
+        "cardinal",
+        "--set",
+        "mesh.length=0.1",
+        "--set",
+        "load.lateral=1000.0",
+        "--set",
+        "steps.lateral=250.0",
+        "--set",
+        "steps.lateral_max=250.0",
+        "--set",
+        'contact.same_layer="off"',
+    ]
     out = _run_and_compare(tmp_path, case, tag="cardinal")
     mk = np.loadtxt(out[1] / "moment_curvature.csv", delimiter=",", skiprows=1)
     slipped = np.loadtxt(out[1] / "slip.csv", delimiter=",", skiprows=1)[:, 2:]
@@ -167,8 +207,11 @@ def test_a_cardinal_piece_with_friction_is_the_same_on_1_2_and_3_ranks(tmp_path)
 
 @needs_mpirun
 def test_mesh_and_bad_input_speak_once_under_mpirun(tmp_path):
-    done = strand_run(2, ["mesh", "--no-picture", "--set", "mesh.length=0.05", "--out",
-                          str(tmp_path / "mesh")], tmp_path)  # fmt: skip
+    done = strand_run(
+        2,
+        ["mesh", "--no-picture", "--set", "mesh.length=0.05", "--out", str(tmp_path / "mesh")],
+        tmp_path,
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stdout.count("interface  type") == 1 and "2 MPI ranks" in done.stdout
     bad = strand_run(2, ["run", "cardinal", "--set", "mesh.length=-1"], tmp_path)
@@ -179,8 +222,9 @@ def test_mesh_and_bad_input_speak_once_under_mpirun(tmp_path):
     other = tmp_path / "other"
     other.mkdir()
     (other / "notes.txt").write_text("mine")
-    refused = strand_run(2, ["run", "cardinal", "--set", "mesh.length=0.05", "--out", str(other)],
-                         tmp_path)  # fmt: skip
+    refused = strand_run(
+        2, ["run", "cardinal", "--set", "mesh.length=0.05", "--out", str(other)], tmp_path
+    )
     assert refused.returncode == 2 and refused.stderr.count("strand: error:") == 1
     assert sorted(p.name for p in other.iterdir()) == ["notes.txt"]
 
@@ -225,8 +269,13 @@ SERIAL_ONLY = [ROOT / "benchmarks" / "mesh_build.py"]  # the demos run on N rank
 def test_serial_scripts_refuse_mpirun_in_one_line(script, tmp_path):
     """The benchmarks (which compare variants in one process) stop before computing, with one
     line and exit code 2, instead of hanging."""
-    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    done = subprocess.run(
+        [str(MPIRUN), "-n", "2", sys.executable, str(script)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert done.returncode == 2 and len(lines) == 1, done.stderr[-2000:]
     assert "start it without mpirun" in lines[0] and not list(tmp_path.iterdir())
@@ -325,14 +374,24 @@ def test_the_contact_api_is_collective_on_2_ranks(tmp_path):
     refuses a point where no dof is; ``tubes`` gives rank 0 the whole beam, rank 1 nothing."""
     script = tmp_path / "api.py"
     script.write_text(COLLECTIVE_API)
-    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [str(MPIRUN), "-n", "2", sys.executable, str(script)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     lines = [line for r in (0, 1) for line in (tmp_path / f"rank{r}.txt").read_text().splitlines()]
     assert lines.count("located 34") == 2 and lines.count("ghosts 1") == 2, lines
     assert sum("absent: point [0.5, 0.0, 0.0] is" in line for line in lines) == 2, lines
-    assert sum("split: candidate_pairs: 1 of 1 pairs" in line and "slab_partitioner" in line
-               for line in lines) == 2, lines  # fmt: skip
+    assert (
+        sum(
+            "split: candidate_pairs: 1 of 1 pairs" in line and "slab_partitioner" in line
+            for line in lines
+        )
+        == 2
+    ), lines
     assert lines.count("load -33.0") == 2, lines
     assert lines.count("nodes True") == 2 and lines.count("cells True") == 2, lines
     assert sum("no dof: point [0.0, 0.0, 0.0] is 0.00313 m" in line for line in lines) == 2, lines
@@ -351,8 +410,13 @@ def test_an_error_on_one_rank_ends_every_rank(tmp_path):
         "if MPI.COMM_WORLD.rank == 0:\n    raise KeyError('only on rank 0')\n"
         "MPI.COMM_WORLD.barrier()\n"
     )
-    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, str(script)], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    done = subprocess.run(
+        [str(MPIRUN), "-n", "2", sys.executable, str(script)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode != 0
     assert "KeyError: 'only on rank 0'" in done.stderr
 
@@ -369,9 +433,20 @@ def test_the_readme_run_command_gives_the_serial_numbers_on_2_ranks(tmp_path):
         out = tmp_path / f"np{n}"
         args = f"--out {out} --set output.plots=false --set output.fields=false"
         done = subprocess.run(
-            ["make", "-s", "-C", str(root), "run", "CASE=cases/quick_1x6.toml", f"NP={n}",
-             f"ARGS={args}"], capture_output=True, text=True, timeout=600,
-        )  # fmt: skip
+            [
+                "make",
+                "-s",
+                "-C",
+                str(root),
+                "run",
+                "CASE=cases/quick_1x6.toml",
+                f"NP={n}",
+                f"ARGS={args}",
+            ],
+            capture_output=True,
+            text=True,
+            timeout=600,
+        )
         assert done.returncode == 0, done.stderr[-3000:]
         assert done.stdout.count("done:") == 1
         outputs[n] = out

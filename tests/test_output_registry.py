@@ -31,8 +31,11 @@ class MaxDeflection:
 
 @pytest.fixture
 def max_deflection():
-    register_output("max_deflection", MaxDeflection,
-                    files={"max_deflection.txt": "the largest deflection of the run, m"})  # fmt: skip
+    register_output(
+        "max_deflection",
+        MaxDeflection,
+        files={"max_deflection.txt": "the largest deflection of the run, m"},
+    )
     yield
     unregister_output("max_deflection")
     assert "max_deflection" not in [o.name for o in registered_outputs()]

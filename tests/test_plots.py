@@ -38,8 +38,9 @@ def test_every_title_lies_inside_its_figure(quick_run):
         canvas = FigureCanvasAgg(fig)  # saved and closed: drawn again as it was saved
         canvas.draw()
         renderer = canvas.get_renderer()
-        texts = [fig._suptitle] + [t for ax in fig.axes for t in (ax.title, ax.xaxis.label,
-                                                                    ax.yaxis.label)]  # fmt: skip
+        texts = [fig._suptitle] + [
+            t for ax in fig.axes for t in (ax.title, ax.xaxis.label, ax.yaxis.label)
+        ]
         texts += [ax.get_legend() for ax in fig.axes]
         for t in texts:
             if t is None or (hasattr(t, "get_text") and not t.get_text()):
@@ -93,11 +94,15 @@ def test_load_deflection_keeps_both_laws_in_sight(quick_run):
     in different colours, one a wide band under the model, the other a thin dashed line over it."""
     ax = quick_run["figures"]["load_deflection.png"].axes[0]
     model = next(ln for ln in ax.lines if ln.get_label() == "model")
-    band, line = (next(ln for ln in ax.lines if f"({rule}, Masing)" in ln.get_label())
-                  for rule in ("cumulative", "own tension"))  # fmt: skip
+    band, line = (
+        next(ln for ln in ax.lines if f"({rule}, Masing)" in ln.get_label())
+        for rule in ("cumulative", "own tension")
+    )
     assert to_rgba(band.get_color())[:3] != to_rgba(line.get_color())[:3]
-    assert to_rgba(model.get_color())[:3] not in (to_rgba(band.get_color())[:3],
-                                                  to_rgba(line.get_color())[:3])  # fmt: skip
+    assert to_rgba(model.get_color())[:3] not in (
+        to_rgba(band.get_color())[:3],
+        to_rgba(line.get_color())[:3],
+    )
     assert band.get_linewidth() >= 3 * line.get_linewidth()
     assert band.get_zorder() < model.get_zorder() < line.get_zorder()
     assert line.get_linestyle() not in ("-", "solid")

@@ -30,8 +30,11 @@ def test_tension_alone_balances_and_gives_costellos_torque(tmp_path):
     (measured within 3e-7), no bending moment, and the torque is Costello's within 3 %
     (measured +1.1 %; tests/test_tension.py finds the midspan section's within 3 % too)."""
     path = tmp_path / "seven.toml"
-    path.write_text(SEVEN_WIRE.replace("lay_angle = 6.06", "lay_angle = 12.0")
-                    .replace('same_layer = "off"', STIFF))  # fmt: skip
+    path.write_text(
+        SEVEN_WIRE.replace("lay_angle = 6.06", "lay_angle = 12.0").replace(
+            'same_layer = "off"', STIFF
+        )
+    )
     case = load_case(path, ["load.cycle=[0.0]", *QUIET])
     run_case(case, tmp_path / "out", stream=io.StringIO())
     steps = rows(tmp_path / "out" / "steps.csv")
@@ -58,8 +61,13 @@ def test_bending_end_moments_are_the_set_ups_own_end_couples(tmp_path):
     positive when they stretch the +x fibre: minus the couple on the strand at z = L)."""
     path = tmp_path / "seven.toml"
     path.write_text(SEVEN_WIRE)
-    bending = ['load.kind="bending"', "load.curvature=0.05", "load.zone=0.04",
-               "steps.curvature=0.02", "steps.curvature_max=0.05"]  # fmt: skip
+    bending = [
+        'load.kind="bending"',
+        "load.curvature=0.05",
+        "load.zone=0.04",
+        "steps.curvature=0.02",
+        "steps.curvature_max=0.05",
+    ]
     case = load_case(path, [*bending, *QUIET, "output.plots=false"])
     run_case(case, tmp_path / "out", stream=io.StringIO())
     steps = {int(s["step"]): s for s in rows(tmp_path / "out" / "steps.csv")}

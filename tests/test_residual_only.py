@@ -21,8 +21,13 @@ from strand_cases import SEVEN_WIRE
 
 QUIET = ["output.plots=false", "output.fields=false", "fatigue.outputs=false"]
 #: uniform bending: every dof of the wire ends at z = 0 and the rotations at z = L prescribed
-BENDING = ['load.kind="bending"', "load.zone=0.04", "load.curvature=0.5", "steps.curvature=0.1",
-           "steps.curvature_max=0.2"]  # fmt: skip
+BENDING = [
+    'load.kind="bending"',
+    "load.zone=0.04",
+    "load.curvature=0.5",
+    "steps.curvature=0.1",
+    "steps.curvature_max=0.2",
+]
 
 
 def seven_wire(tmp_path: Path, settings: list[str]):
@@ -148,9 +153,11 @@ def test_a_run_takes_the_same_iterates_with_fewer_contact_tangents(tmp_path, set
     assert res_a == res_b
     for key in ("residual_calls", "jacobian_calls"):
         assert tm_a[key] == tm_b[key] > 0
-    print(f"contact tangents: {counts_b[True]} with full evaluations, {counts_a[True]} with "
-          f"residual-only ones (+{counts_a[False]} residuals alone); "
-          f"{tm_a['jacobian_calls']} Jacobians, {tm_a['residual_calls']} residuals")  # fmt: skip
+    print(
+        f"contact tangents: {counts_b[True]} with full evaluations, {counts_a[True]} with "
+        f"residual-only ones (+{counts_a[False]} residuals alone); "
+        f"{tm_a['jacobian_calls']} Jacobians, {tm_a['residual_calls']} residuals"
+    )
     assert counts_b[False] == 0
     if not settings:
         assert counts_a[True] == tm_a["jacobian_calls"] * groups

@@ -68,11 +68,28 @@ def seven(tmp_path):
 
 @pytest.mark.parametrize(
     "settings, k",
-    [([], 6), (['contact.model="large"'], 8), (['contact.same_layer="nominal"'], 6),
-     (['load.kind="bending"', "load.zone=0.04", "load.curvature=0.5", "steps.curvature=0.1",
-       "steps.curvature_max=0.2"], 11)],
-    ids=["small sliding, after a step cut", "large sliding", "same-layer contact", "uniform bending"],
-)  # fmt: skip
+    [
+        ([], 6),
+        (['contact.model="large"'], 8),
+        (['contact.same_layer="nominal"'], 6),
+        (
+            [
+                'load.kind="bending"',
+                "load.zone=0.04",
+                "load.curvature=0.5",
+                "steps.curvature=0.1",
+                "steps.curvature_max=0.2",
+            ],
+            11,
+        ),
+    ],
+    ids=[
+        "small sliding, after a step cut",
+        "large sliding",
+        "same-layer contact",
+        "uniform bending",
+    ],
+)
 def test_a_run_continued_from_any_step_is_the_uninterrupted_run(seven, tmp_path, settings, k):
     case = load_case(seven, [*QUIET, *settings])
     checkpoint = uninterrupted_with_checkpoint(case, tmp_path / "whole", k)
@@ -89,8 +106,12 @@ def test_a_serial_checkpoint_continues_on_two_ranks(seven, tmp_path):
     out = tmp_path / "continued"
     args = ["run", str(seven), "--restart", str(checkpoint), "--out", str(out)]
     args += [a for s in QUIET for a in ("--set", s)]
-    done = subprocess.run([str(MPIRUN), "-n", "2", sys.executable, "-m", "strand.app", *args],
-                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [str(MPIRUN), "-n", "2", sys.executable, "-m", "strand.app", *args],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     assert_continues(tmp_path / "whole", out, 7, 1e-8)  # LU round-off of another distribution
 
@@ -107,12 +128,22 @@ def test_checkpoints_are_written_as_the_run_goes_and_bad_ones_refused(seven, tmp
     # a checkpoint of another strand, and a file that is none: one line each, exit code 2
     capsys.readouterr()
     longer = ["--set", "mesh.length=0.12"]
-    code = main(["run", str(seven), "--restart", str(out / "checkpoint.h5"), "--out",
-                 str(tmp_path / "other"), *longer])  # fmt: skip
+    code = main(
+        [
+            "run",
+            str(seven),
+            "--restart",
+            str(out / "checkpoint.h5"),
+            "--out",
+            str(tmp_path / "other"),
+            *longer,
+        ]
+    )
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and "written for another strand" in err
-    code = main(["run", str(seven), "--restart", str(out / "steps.csv"), "--out",
-                 str(tmp_path / "third")])  # fmt: skip
+    code = main(
+        ["run", str(seven), "--restart", str(out / "steps.csv"), "--out", str(tmp_path / "third")]
+    )
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and "cannot read the checkpoint" in err
 

@@ -95,8 +95,9 @@ def test_read_fields_as_pyvista_grids(run):
     assert grid.n_points == len(last.points) and grid.n_cells == len(last.cells[0].data)
     assert ARRAYS <= set(grid.array_names)
     np.testing.assert_array_equal(grid.point_data["displacement"], last.point_data["displacement"])
-    np.testing.assert_array_equal(grid.cell_data["axial_force"].ravel(),
-                                  last.cell_data["axial_force"][0].ravel())  # fmt: skip
+    np.testing.assert_array_equal(
+        grid.cell_data["axial_force"].ravel(), last.cell_data["axial_force"][0].ravel()
+    )
     assert grid.field_data["time"][0] == grids[-1].time
     assert grid.field_data["step"][0] == int(steps[-1]["step"])
     for name in ("tension_N", "lateral_N"):
@@ -122,8 +123,12 @@ def test_paraview_opens_the_series_with_every_step_and_array(run, tmp_path):
     out, steps = run
     script = tmp_path / "check.py"
     script.write_text(PVPYTHON_CHECK)
-    done = subprocess.run(["pvpython", str(script), str(out / "fields.xdmf")],
-                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    done = subprocess.run(
+        ["pvpython", str(script), str(out / "fields.xdmf")],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     count, names = done.stdout.strip().splitlines()[-2:]
     n, last = count.split()

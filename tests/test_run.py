@@ -86,8 +86,16 @@ def test_run_writes_every_output_and_balances_the_section(tmp_path, capsys):
     assert main(["run", str(case), "--out", str(out)]) == 0
     text = capsys.readouterr().out
     assert "[" in text and "Newton its" in text and "done:" in text
-    for name in ("fields.xdmf", "fields.h5", "steps.csv", "axial_forces.csv",
-                 "moment_curvature.csv", "summary.txt", "case.toml", "README.txt"):  # fmt: skip
+    for name in (
+        "fields.xdmf",
+        "fields.h5",
+        "steps.csv",
+        "axial_forces.csv",
+        "moment_curvature.csv",
+        "summary.txt",
+        "case.toml",
+        "README.txt",
+    ):
         assert (out / name).stat().st_size > 0, name
     assert (out / "fields.bp").is_dir()
     with open(out / "steps.csv") as f:
@@ -217,10 +225,17 @@ def test_small_sliding_drift_is_the_elements_own_gap_drift(interface):
 
     t0 = np.array([[tangent(inner, g.points[p.a[k]]), tangent(outer, g.points[p.b[k]])]])
     group = ContactGroup(
-        np.array([[0, 1]]), g.points[[p.a[k], p.b[k]]][None], False, [p.radius_a[k]],
-        [p.radius_b[k]], p.normal[k][None], PenaltyLaw(np.array([5e7])), friction_law=None,
-        normal="director", tangent0=t0,
-    )  # fmt: skip
+        np.array([[0, 1]]),
+        g.points[[p.a[k], p.b[k]]][None],
+        False,
+        [p.radius_a[k]],
+        [p.radius_b[k]],
+        p.normal[k][None],
+        PenaltyLaw(np.array([5e7])),
+        friction_law=None,
+        normal="director",
+        tangent0=t0,
+    )
     dz = 1e-3 * np.cos(outer.alpha)
     dphi = outer.angular_rate * dz
     c, s = np.cos(dphi), np.sin(dphi)
@@ -236,8 +251,10 @@ def test_small_sliding_drift_is_the_elements_own_gap_drift(interface):
 def test_programme_time_runs_one_unit_per_stage():
     from strand.model.programme import LoadProgramme, Stage
 
-    stages = (Stage("tension", "tension", 40e3, 1.0, 0.1),
-              *(Stage(f"leg {i}", "lateral", c, 1.0, 0.1) for i, c in enumerate((4e3, 0.0, -4e3))))  # fmt: skip
+    stages = (
+        Stage("tension", "tension", 40e3, 1.0, 0.1),
+        *(Stage(f"leg {i}", "lateral", c, 1.0, 0.1) for i, c in enumerate((4e3, 0.0, -4e3))),
+    )
     prog = LoadProgramme(stages, "lateral")
     assert prog.time(0, 10e3) == 0.25 and prog.time(0, 40e3) == 1.0
     assert prog.time(1, 1e3) == 1.25 and prog.time(2, 1e3) == 2.75 and prog.time(3, -4e3) == 4.0
@@ -249,8 +266,10 @@ def test_progress_weights_share_the_programme_also_when_the_cycle_stays_at_zero(
     from strand.model.programme import LoadProgramme, Stage
 
     tension = Stage("tension", "tension", 40e3, 10e3, 100.0)
-    for targets, expected in [((1.0, 0.0, -1.0, 0.0), [0.1, 0.225, 0.225, 0.225, 0.225]),
-                              ((0.0,), [1.0, 0.0])]:  # fmt: skip
+    for targets, expected in [
+        ((1.0, 0.0, -1.0, 0.0), [0.1, 0.225, 0.225, 0.225, 0.225]),
+        ((0.0,), [1.0, 0.0]),
+    ]:
         legs = [Stage(f"leg {i}", "lateral", 4.3e3 * c, 250.0, 4.0) for i, c in enumerate(targets)]
         weights = LoadProgramme((tension, *legs), "lateral").weights()
         assert weights == pytest.approx(expected)

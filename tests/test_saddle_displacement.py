@@ -31,8 +31,12 @@ from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 QUIET = ["output.plots=false", "output.fields=false", "fatigue.outputs=false"]
 DELTA, FIRST = 0.09e-3, 0.025e-3  # m: the midspan amplitude (about 300 N) and first increment
 TOL = CONTROL_TOLERANCE * FIRST  # m, the control's tolerance on the deflection
-DISPLACEMENT = ['load.control="displacement"', f"load.deflection={DELTA}",
-                f"steps.deflection={FIRST}", f"steps.deflection_max={2 * FIRST}"]  # fmt: skip
+DISPLACEMENT = [
+    'load.control="displacement"',
+    f"load.deflection={DELTA}",
+    f"steps.deflection={FIRST}",
+    f"steps.deflection_max={2 * FIRST}",
+]
 #: the 1+6 (0.1 m, 10 kN) without a saddle load amplitude
 CASE = SEVEN_WIRE.replace("lateral = 300.0\n", "")
 
@@ -95,8 +99,14 @@ def test_the_force_controlled_test_at_the_loads_found_gives_the_displacements_ba
     loads = [float(r["lateral_N"]) for r in steps]
     peak = loads[-1]
     fractions = "[" + ", ".join(repr(p / peak) for p in loads) + "]"
-    same = run(case_file, "same_loads", f"load.lateral={peak!r}", f"load.cycle={fractions}",
-               f"steps.lateral={2 * peak}", f"steps.lateral_max={2 * peak}")  # fmt: skip
+    same = run(
+        case_file,
+        "same_loads",
+        f"load.lateral={peak!r}",
+        f"load.cycle={fractions}",
+        f"steps.lateral={2 * peak}",
+        f"steps.lateral_max={2 * peak}",
+    )
     forced = cycle(same)
     assert [float(r["lateral_N"]) for r in forced] == pytest.approx(loads, rel=1e-14)
     for a, b in zip(steps, forced, strict=True):
@@ -117,8 +127,10 @@ def test_plus_and_minus_deflections_need_opposite_loads(up, case_file):
     assert abs(p_up + p_down) <= 1e-9 * p_up
     full = cycle(run(case_file, "full", *DISPLACEMENT, "load.cycle=[1.0, 0.0, -1.0, 0.0]"))
     cable = load_case(case_file).cable
-    stiffness = [1.0 / TensionedBeam(0.1, 10e3, lambda m, ei=ei: m / ei).deflection(1.0)
-                 for ei in bending_stiffness_bounds(cable)]  # fmt: skip
+    stiffness = [
+        1.0 / TensionedBeam(0.1, 10e3, lambda m, ei=ei: m / ei).deflection(1.0)
+        for ei in bending_stiffness_bounds(cable)
+    ]
     for target in (DELTA, -DELTA):
         peak = next(r for r in full if float(r["prescribed_m"]) == target)
         assert stiffness[0] * DELTA < abs(float(peak["lateral_N"])) < stiffness[1] * DELTA
@@ -130,8 +142,15 @@ def test_y_b_is_reached_at_the_clamp_distance(case_file, tmp_path):
     nodal unknowns here (not by the set-up), is ±yb/2 at the cycle's peaks (to the tolerance):
     a peak-to-peak Y_b of yb; the progress lines are in mm."""
     yb = 0.2e-3
-    settings = [*QUIET, 'load.control="displacement"', f"load.yb={yb}", "steps.yb=0.05e-3",
-                "steps.yb_max=0.1e-3", "load.cycle=[1.0, -1.0]", "mesh.length=0.2"]  # fmt: skip
+    settings = [
+        *QUIET,
+        'load.control="displacement"',
+        f"load.yb={yb}",
+        "steps.yb=0.05e-3",
+        "steps.yb_max=0.1e-3",
+        "load.cycle=[1.0, -1.0]",
+        "mesh.length=0.2",
+    ]
     case = load_case(case_file, settings)
     tol = CONTROL_TOLERANCE * 0.05e-3 / 2
     problem, programme = build_problem(case, io.StringIO())
@@ -159,8 +178,13 @@ def test_a_sweep_of_y_b_amplitudes(case_file):
     its own Y_b; sweep.csv gives the amplitude in m and the peak saddle load, which grows with
     it; the second member is a separate run of its amplitude (the control starts afresh from
     the tensioned state)."""
-    yb = ['load.control="displacement"', "load.cycle=[1.0]", "mesh.length=0.2",
-          "steps.yb=0.05e-3", "steps.yb_max=0.1e-3"]  # fmt: skip
+    yb = [
+        'load.control="displacement"',
+        "load.cycle=[1.0]",
+        "mesh.length=0.2",
+        "steps.yb=0.05e-3",
+        "steps.yb_max=0.1e-3",
+    ]
     out = run(case_file, "sweep", *yb, "load.yb=0.2e-3", "load.sweep=[0.1e-3, 0.2e-3]")
     with open(out / "sweep.csv") as f:
         table = list(csv.DictReader(f))
@@ -180,13 +204,30 @@ def test_y_b_control_is_the_same_on_2_ranks(case_file):
     """The secant's solves, measures and decisions are collective: on 2 ranks (the saddle and
     the point 89 mm from the clamp on different ranks) the loads found and the displacements
     are the serial run's to 1e-8 (measured: 1e-13), in as many solves."""
-    sets = ['load.control="displacement"', "load.yb=0.2e-3", "steps.yb=0.05e-3",
-            "steps.yb_max=0.1e-3", "mesh.length=0.2", *QUIET]  # fmt: skip
+    sets = [
+        'load.control="displacement"',
+        "load.yb=0.2e-3",
+        "steps.yb=0.05e-3",
+        "steps.yb_max=0.1e-3",
+        "mesh.length=0.2",
+        *QUIET,
+    ]
     args = [x for s in sets for x in ("--set", s)]
     serial = run(case_file, "serial", *sets)
     out = case_file.parent / "two_ranks"
-    cmd = [str(MPIRUN), "-n", "2", sys.executable, "-m", "strand.app", "run", str(case_file),
-           "--out", str(out), *args]  # fmt: skip
+    cmd = [
+        str(MPIRUN),
+        "-n",
+        "2",
+        sys.executable,
+        "-m",
+        "strand.app",
+        "run",
+        str(case_file),
+        "--out",
+        str(out),
+        *args,
+    ]
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr[-2000:]
     a, b = cycle(serial), cycle(out)
@@ -237,9 +278,15 @@ def test_the_control_finds_the_load_of_a_nonlinear_spring(reach):
         spring.load = p
 
     target = {"d": 0.0}
-    control = DisplacementControl(spring, lambda: spring.load, set_load,
-                                  lambda: float(spring.w.x.array[0]), lambda: target["d"],
-                                  lambda: 2e5, tolerance=1e-9)  # fmt: skip
+    control = DisplacementControl(
+        spring,
+        lambda: spring.load,
+        set_load,
+        lambda: float(spring.w.x.array[0]),
+        lambda: target["d"],
+        lambda: 2e5,
+        tolerance=1e-9,
+    )
     stepper = LoadStepper(control, 1e-4, 1e-7, max_step=2e-4)
     for end in (1e-3, -0.5e-3):
         control.start()  # each ramp a stage
@@ -268,20 +315,40 @@ def test_the_beam_compliance_is_the_tensioned_beams():
     [
         ({"control": "displacement"}, {}, {}, 'control = "displacement" needs its amplitude'),
         ({"control": "displacement", "deflection": 1e-4, "yb": 1e-4}, {}, {}, "both given"),
-        ({"control": "displacement", "deflection": 1e-4, "lateral": 300.0}, {}, {},
-         "[load] lateral = 300 N is a force amplitude"),
-        ({"control": "displacement", "yb": 1e-4}, {}, {},
-         "[fatigue] clamp_distance = 0.089 m, where yb is measured, is not short of midspan"),
-        ({"control": "displacement", "yb": 1e-4}, {}, {"clamp_distance": 0.06},
-         "clamp_distance = 0.06 m"),
-        ({"deflection": 1e-4}, {}, {}, '[load] deflection = 0.0001 m is a displacement amplitude'),
+        (
+            {"control": "displacement", "deflection": 1e-4, "lateral": 300.0},
+            {},
+            {},
+            "[load] lateral = 300 N is a force amplitude",
+        ),
+        (
+            {"control": "displacement", "yb": 1e-4},
+            {},
+            {},
+            "[fatigue] clamp_distance = 0.089 m, where yb is measured, is not short of midspan",
+        ),
+        (
+            {"control": "displacement", "yb": 1e-4},
+            {},
+            {"clamp_distance": 0.06},
+            "clamp_distance = 0.06 m",
+        ),
+        ({"deflection": 1e-4}, {}, {}, "[load] deflection = 0.0001 m is a displacement amplitude"),
         ({"control": "stroke"}, {}, {}, "[load] control = 'stroke': expected \"force\""),
-        ({"control": "displacement", "yb": -1e-4}, {}, {}, "[load] yb = -0.0001 m: expected a "
-         "positive amplitude"),
-        ({"control": "displacement", "yb": 1e-4}, {"yb": 1e-3}, {},
-         "[steps] yb = 0.001 m exceeds yb_max = 0.0002 m"),
+        (
+            {"control": "displacement", "yb": -1e-4},
+            {},
+            {},
+            "[load] yb = -0.0001 m: expected a positive amplitude",
+        ),
+        (
+            {"control": "displacement", "yb": 1e-4},
+            {"yb": 1e-3},
+            {},
+            "[steps] yb = 0.001 m exceeds yb_max = 0.0002 m",
+        ),
     ],
-)  # fmt: skip
+)
 def test_bad_displacement_settings_are_refused_in_one_line(load, steps, fatigue, message):
     data = tomllib.loads(CASE)
     data["load"] = {k: v for k, v in data["load"].items() if k != "lateral"} | load

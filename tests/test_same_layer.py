@@ -83,12 +83,23 @@ def test_settings_are_checked():
 
 def _seven_wire(outer_diameter: float):
     """A 1+6 of a 3.34 mm core and six wires of ``outer_diameter``, 6.06°."""
-    return cable_from_dict({
-        "name": "1+6",
-        "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
-        "layer": [{"wires": 6, "diameter": outer_diameter, "E": 180e9, "nu": 0.3,
-                   "lay_angle": 6.06, "lay": "S", "friction": 0.5}],
-    })  # fmt: skip
+    return cable_from_dict(
+        {
+            "name": "1+6",
+            "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
+            "layer": [
+                {
+                    "wires": 6,
+                    "diameter": outer_diameter,
+                    "E": 180e9,
+                    "nu": 0.3,
+                    "lay_angle": 6.06,
+                    "lay": "S",
+                    "friction": 0.5,
+                }
+            ],
+        }
+    )
 
 
 def _tensioned(cable, gaps: str, model: str = "small", tension: float = 10e3):
@@ -96,8 +107,12 @@ def _tensioned(cable, gaps: str, model: str = "small", tension: float = 10e3):
     pulled to ``tension`` (N): the mid-piece pairs' gaps and forces, their initial gaps, the
     layer's radial change (m) and the strand's strain."""
     geometry = build_geometry(cable, 0.15, 4e-3)
-    problem = StrandProblem(geometry, ContactSettings(same_layer=gaps, model=model),
-                            NewtonOptions(atol=1e-4, max_it=15), setup=SaddleTest)  # fmt: skip
+    problem = StrandProblem(
+        geometry,
+        ContactSettings(same_layer=gaps, model=model),
+        NewtonOptions(atol=1e-4, max_it=15),
+        setup=SaddleTest,
+    )
     setup = problem.setup
     LoadStepper(problem.solver, tension / 2, tension / 10).ramp(
         partial(setup.set, "tension"), 0.0, tension
@@ -150,10 +165,18 @@ def test_a_frictionless_cardinal_with_packed_layers_tensions_to_40_kn(tmp_path):
     0.3 m of Cardinal takes the full 40 kN (without same-layer pairs it stops at 15.5–17.6 kN:
     the sideways modes have no stiffness), and its ends hold Costello's torque within 10 %
     (measured −5.1 %). The frozen normal is the default without friction (``ContactSettings``)."""
-    case = load_case(None, ["mesh.length=0.3", "contact.friction=false",
-                            'contact.normal="director"', "load.cycle=[0.0]",
-                            "output.fields=false", "output.plots=false",
-                            "fatigue.outputs=false"])  # fmt: skip
+    case = load_case(
+        None,
+        [
+            "mesh.length=0.3",
+            "contact.friction=false",
+            'contact.normal="director"',
+            "load.cycle=[0.0]",
+            "output.fields=false",
+            "output.plots=false",
+            "fatigue.outputs=false",
+        ],
+    )
     assert case.contact.normal == "director" and case.contact.same_layer == "packed"
     result = run_case(case, tmp_path / "out", stream=io.StringIO())
     assert not result.failure
@@ -169,8 +192,9 @@ def _saddle_peak(stencil: str, h: float) -> tuple[float, float, float]:
     with elements of at most ``h``: midspan deflection, end displacement (m) and the core's
     contact force (N)."""
     quick = Path(__file__).resolve().parents[1] / "cases" / "quick_1x6.toml"
-    case = load_case(quick, [f'contact.same_layer_stencil="{stencil}"', f"mesh.h_max={h}",
-                             "load.cycle=[1.0]"])  # fmt: skip
+    case = load_case(
+        quick, [f'contact.same_layer_stencil="{stencil}"', f"mesh.h_max={h}", "load.cycle=[1.0]"]
+    )
     problem, programme = build_problem(case)
     run_programme(problem, programme)
     s = problem.setup.state()

@@ -38,8 +38,18 @@ def side_by_side(n_pairs=3, compliance_kind="hertz", gap=None, mu=0.5, seed=3, n
         friction = Mindlin(np.full(n_pairs, mu), mindlin_ratio(65e9, 0.33, 65e9, 0.33))
     else:
         law, friction = PenaltyLaw(np.full(n_pairs, 5e7)), ElasticSlip(np.full(n_pairs, mu), 5e-6)
-    group = SegmentGroup(stencils, xi, r, r, n, law, friction_law=friction, initial_gap=gap,
-                         normal=normal, initial_positions=X)  # fmt: skip
+    group = SegmentGroup(
+        stencils,
+        xi,
+        r,
+        r,
+        n,
+        law,
+        friction_law=friction,
+        initial_gap=gap,
+        normal=normal,
+        initial_positions=X,
+    )
     group.X_nodes = X.reshape(-1, 3)  # the nodes' positions, in stencil order
     return group, xi
 

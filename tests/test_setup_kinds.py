@@ -99,16 +99,19 @@ class Pull(SetupKind):
     def reference(self, case, result) -> list[float]:
         """The fibre model's end displacement (m) at every cycle step."""
         ea = fibre_model(case.cable, 1.0)["EA"]
-        return [(s.state.tension + s.state.pull) * case.mesh.length / ea
-                for s in result.cycle_steps]  # fmt: skip
+        return [
+            (s.state.tension + s.state.pull) * case.mesh.length / ea for s in result.cycle_steps
+        ]
 
     def summary_lines(self, case, result) -> list[str]:
         peak = result.peak_step
         if peak is None:
             return []
         ref = result.reference[result.cycle_steps.index(peak)]
-        return [f"pull {peak.load:.0f} N: end displacement {1e6 * peak.state.end_displacement:.2f}"
-                f" µm, fibre model {1e6 * ref:.2f} µm"]  # fmt: skip
+        return [
+            f"pull {peak.load:.0f} N: end displacement {1e6 * peak.state.end_displacement:.2f}"
+            f" µm, fibre model {1e6 * ref:.2f} µm"
+        ]
 
 
 @pytest.fixture
@@ -159,8 +162,22 @@ def test_a_kind_defined_outside_strand_runs_like_the_built_in_ones(pull, seven, 
 
 def test_a_sweep_reports_the_kinds_measure(pull, seven, tmp_path):
     out = tmp_path / "sweep"
-    assert main(["run", str(seven), "--out", str(out), "--set", "load.sweep=[1e3, 2e3]",
-                 "--set", "load.cycle=[1.0]", *QUICK_ARGS]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "run",
+                str(seven),
+                "--out",
+                str(out),
+                "--set",
+                "load.sweep=[1e3, 2e3]",
+                "--set",
+                "load.cycle=[1.0]",
+                *QUICK_ARGS,
+            ]
+        )
+        == 0
+    )
     table = rows(out / "sweep.csv")
     assert [r["amplitude_N"] for r in table] == ["1000", "2000"]
     peaks = [float(r["peak_end_displacement"]) for r in table]

@@ -31,10 +31,18 @@ def dragged_pair(angle_deg: float = 90.0, reach: int = 3, mu: float = 0.0):
     ends = np.zeros((1, 4), dtype=bool)
     tangents = np.repeat([[1.0, 0.0, 0.0], [np.cos(t), np.sin(t), 0.0]], na, axis=0)[None]
     group = SlidingGroup(
-        stencil, X, na, False, [[reach, reach]], PenaltyLaw(np.array([K_N])),
-        friction_law=ElasticSlip(np.array([mu]), 5e-6), wire_end=ends,
-        radius_a=R, radius_b=R, tangents=tangents,
-    )  # fmt: skip
+        stencil,
+        X,
+        na,
+        False,
+        [[reach, reach]],
+        PenaltyLaw(np.array([K_N])),
+        friction_law=ElasticSlip(np.array([mu]), 5e-6),
+        wire_end=ends,
+        radius_a=R,
+        radius_b=R,
+        tangents=tangents,
+    )
     return group, na
 
 
@@ -124,10 +132,18 @@ def arc_pair(curvature_radius: float = 0.05, line: bool = False, reach: int = 3)
         tb = np.tile([0.0, 1.0, 0.0], (na, 1))
     X = np.vstack([xa, xb])[None]
     group = SlidingGroup(
-        np.arange(len(X[0]))[None], X, na, line, [[reach, 0 if line else reach]],
-        PenaltyLaw(np.array([K_N])), friction_law=None, wire_end=np.zeros((1, 4), dtype=bool),
-        radius_a=R, radius_b=R, tangents=np.vstack([ta, tb])[None],
-    )  # fmt: skip
+        np.arange(len(X[0]))[None],
+        X,
+        na,
+        line,
+        [[reach, 0 if line else reach]],
+        PenaltyLaw(np.array([K_N])),
+        friction_law=None,
+        wire_end=np.zeros((1, 4), dtype=bool),
+        radius_a=R,
+        radius_b=R,
+        tangents=np.vstack([ta, tb])[None],
+    )
     return group, na, rho
 
 

@@ -44,10 +44,19 @@ def _group(X, tangents, na, line, compliance="penalty", angle=np.pi / 2, slip="c
     reach = na // 2 - 1
     normal_law, friction_law = _laws(compliance, line, angle)
     return SlidingGroup(
-        np.arange(len(X))[None], X[None], na, line, [[reach, 0 if line else reach]],
-        normal_law, friction_law=friction_law, wire_end=np.zeros((1, 4), dtype=bool), radius_a=R_A,
-        radius_b=R_B, tangents=tangents[None], slip=slip,
-    )  # fmt: skip
+        np.arange(len(X))[None],
+        X[None],
+        na,
+        line,
+        [[reach, 0 if line else reach]],
+        normal_law,
+        friction_law=friction_law,
+        wire_end=np.zeros((1, 4), dtype=bool),
+        radius_a=R_A,
+        radius_b=R_B,
+        tangents=tangents[None],
+        slip=slip,
+    )
 
 
 def arc_pair(line: bool, compliance="penalty", slip="centreline", rho=0.05, angle=60.0):
@@ -81,10 +90,18 @@ def straight_pairs(line: bool, angle_deg: float = 35.0):
     large = _group(X, T, 4, line, angle=angle)
     laws = _laws("penalty", line, angle)
     small = ContactGroup(
-        [[0, 1]], np.stack([xa[1], xb[0 if line else 1]])[None], line, [R_A], [R_B],
-        [[0.0, 0.0, 1.0]], laws[0], friction_law=laws[1], normal="director",
-        tangent0=np.stack([ta, tb])[None], slip="centreline",
-    )  # fmt: skip
+        [[0, 1]],
+        np.stack([xa[1], xb[0 if line else 1]])[None],
+        line,
+        [R_A],
+        [R_B],
+        [[0.0, 0.0, 1.0]],
+        laws[0],
+        friction_law=laws[1],
+        normal="director",
+        tangent0=np.stack([ta, tb])[None],
+        slip="centreline",
+    )
     return large, small, 4 + (0 if line else 1)  # the window row of b's contact node
 
 
@@ -302,8 +319,12 @@ def _packed_seven_wire(model: str, h_max: float, lateral: float = 0.0):
     a saddle load ``lateral``, N): end displacement at 10 kN, the mid-piece same-layer force per
     length there (N/m), the core | layer-1 forces' sum, and the deflection."""
     geometry = seven_wire(length=0.1, h_max=h_max)
-    problem = StrandProblem(geometry, ContactSettings(same_layer="packed", model=model),
-                            NewtonOptions(atol=1e-2, max_it=25, stall_after=0), setup=SaddleTest)  # fmt: skip
+    problem = StrandProblem(
+        geometry,
+        ContactSettings(same_layer="packed", model=model),
+        NewtonOptions(atol=1e-2, max_it=25, stall_after=0),
+        setup=SaddleTest,
+    )
     LoadStepper(problem.solver, 5e3, 100.0).ramp(problem.setup.set_tension, 0.0, 10e3)
     pairs = same_layer_pairs(geometry, "packed")
     middle = np.abs(geometry.points[pairs.a, 2] - 0.05) < 0.03
@@ -369,11 +390,23 @@ def test_large_sliding_same_layer_pairs_are_the_same_on_1_and_2_ranks(tmp_path):
     facing segment, then node a) kept whole on the rank that evaluates it; at a tight tolerance
     on a fixed load path the tables agree to 1e-8."""
     (tmp_path / "seven.toml").write_text(SEVEN_WIRE)
-    same = ["--set", 'contact.model="large"', "--set", 'contact.same_layer="nominal"', "--set",
-            "steps.balance=0", "--set", "steps.tolerance=1e-7", "--set",
-            "steps.max_iterations=20", "--set", "steps.growth=1.0"]  # fmt: skip
-    _run_and_compare(tmp_path, ["seven.toml", *same], ranks=(2,), tag="large_same_layer",
-                     counts=("cuts",))  # fmt: skip
+    same = [
+        "--set",
+        'contact.model="large"',
+        "--set",
+        'contact.same_layer="nominal"',
+        "--set",
+        "steps.balance=0",
+        "--set",
+        "steps.tolerance=1e-7",
+        "--set",
+        "steps.max_iterations=20",
+        "--set",
+        "steps.growth=1.0",
+    ]
+    _run_and_compare(
+        tmp_path, ["seven.toml", *same], ranks=(2,), tag="large_same_layer", counts=("cuts",)
+    )
 
 
 def test_a_large_sliding_run_with_both_variants_continues_from_a_checkpoint(tmp_path):

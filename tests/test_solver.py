@@ -371,14 +371,21 @@ def test_the_problem_is_dolfinx_nonlinear_problem_with_pair_couplings():
     terms = [AxialSpring([tips], k), NodalLoad([tips[0]], [[5e3, 0, 0, 0, 0, 0]], factor=1.0)]
     petsc_options = {"mat_mumps_icntl_14": 77, "snes_max_it": 3}
     problem = NonlinearProblem(
-        beam.residual(), w, [bc], terms=terms, options=NewtonOptions(max_it=25),
-        petsc_options_prefix="bars_", petsc_options=petsc_options,
-    )  # fmt: skip
+        beam.residual(),
+        w,
+        [bc],
+        terms=terms,
+        options=NewtonOptions(max_it=25),
+        petsc_options_prefix="bars_",
+        petsc_options=petsc_options,
+    )
     assert isinstance(problem, dolfinx.fem.petsc.NonlinearProblem) and problem.u is w
     assert problem.solver.getOptionsPrefix() == "bars_"
     assert [o.getOptionsPrefix() for o in (problem.A, problem.b, problem.x)] == [
-        "bars_A_", "bars_b_", "bars_x_",
-    ]  # fmt: skip
+        "bars_A_",
+        "bars_b_",
+        "bars_x_",
+    ]
     assert problem.solver.getTolerances()[3] == 3  # max_it, over NewtonOptions' 25
     assert problem.solve().converged
     assert problem.solver.getKSP().getPC().getFactorMatrix().getMumpsIcntl(14) == 77

@@ -139,15 +139,19 @@ def test_the_spectrum_supplies_the_sweep():
     case = case_from_dict({"fatigue": {"spectrum": spectrum}})
     assert case.load.sweep == (1000.0, 2000.0, 4300.0)
     assert case.fatigue.spectrum == ((1000.0, 2e6), (2000.0, 3e5), (4300.0, 1e4))
-    same = case_from_dict({"fatigue": {"spectrum": spectrum},
-                           "load": {"sweep": [4300.0, 1000.0, 2000.0]}})  # fmt: skip
+    same = case_from_dict(
+        {"fatigue": {"spectrum": spectrum}, "load": {"sweep": [4300.0, 1000.0, 2000.0]}}
+    )
     assert same.load.sweep == (4300.0, 1000.0, 2000.0)
     for data, message in (
-        ({"load": {"sweep": [1000.0]}}, r"spectrum amplitudes \[1000.0, 2000.0, 4300.0\] "
-                                        r"differ from \[load\] sweep = \[1000.0\]"),
+        (
+            {"load": {"sweep": [1000.0]}},
+            r"spectrum amplitudes \[1000.0, 2000.0, 4300.0\] "
+            r"differ from \[load\] sweep = \[1000.0\]",
+        ),
         ({"fatigue": {"outputs": False}}, r"needs \[fatigue\] outputs = true"),
         ({"load": {"cycle": [0.0]}}, r"needs a cycle with a target other than 0"),
-    ):  # fmt: skip
+    ):
         data = {**data, "fatigue": {"spectrum": spectrum, **data.get("fatigue", {})}}
         with pytest.raises(CaseError, match=message) as e:
             case_from_dict(data)
@@ -159,8 +163,10 @@ def test_a_spectrum_case_reads_back_from_its_case_toml(tmp_path):
     to the same case (floats bitwise)."""
     from strand.app.case_toml import case_toml
 
-    case = case_from_dict({"fatigue": {"spectrum": [[0.1, 3.0e6], [0.3, 1.5]]},
-                           "load": {"kind": "bending"}}, source="test")  # fmt: skip
+    case = case_from_dict(
+        {"fatigue": {"spectrum": [[0.1, 3.0e6], [0.3, 1.5]]}, "load": {"kind": "bending"}},
+        source="test",
+    )
     path = tmp_path / "case.toml"
     path.write_text(case_toml(case, "results/x"))
     again = load_case(path)
@@ -179,8 +185,10 @@ def _history(tmp_path: Path, tension=None) -> Path:
     t, load = two_blocks()
     tension = 10e3 + 100 * load if tension is None else tension
     path = tmp_path / "history.csv"
-    rows = [f"{a!r},{b!r},{c!r}" for a, b, c in zip(t.tolist(), load.tolist(), tension.tolist(),
-                                                    strict=True)]  # fmt: skip
+    rows = [
+        f"{a!r},{b!r},{c!r}"
+        for a, b, c in zip(t.tolist(), load.tolist(), tension.tolist(), strict=True)
+    ]
     path.write_text("# a global analysis' output\ntime_s,lateral_N,tension_N\n" + "\n".join(rows))
     return path
 
@@ -191,8 +199,18 @@ def test_strand_spectrum_prints_the_block_a_case_file_takes(tmp_path, capsys):
     The tension's mean is given for [load] tension, and --output writes the same lines."""
     path = _history(tmp_path)
     out = tmp_path / "spectrum.toml"
-    args = ["spectrum", str(path), "--column", "lateral_N", "--time-column", "time_s",
-            "--tension-column", "tension_N", "--output", str(out)]  # fmt: skip
+    args = [
+        "spectrum",
+        str(path),
+        "--column",
+        "lateral_N",
+        "--time-column",
+        "time_s",
+        "--tension-column",
+        "tension_N",
+        "--output",
+        str(out),
+    ]
     assert main(args) == 0
     text = capsys.readouterr().out
     assert out.read_text() == text
@@ -201,8 +219,9 @@ def test_strand_spectrum_prints_the_block_a_case_file_takes(tmp_path, capsys):
     table = tomllib.loads(text)
     assert table["fatigue"]["spectrum"] == [[1.66667, 0.5], [3.33334, 10], [5, 3]]
     from_history = case_from_dict(table)
-    by_hand = case_from_dict({"fatigue": {"spectrum": [[1.66667, 0.5], [3.33334, 10.0],
-                                                       [5.0, 3.0]]}})  # fmt: skip
+    by_hand = case_from_dict(
+        {"fatigue": {"spectrum": [[1.66667, 0.5], [3.33334, 10.0], [5.0, 3.0]]}}
+    )
     assert from_history == by_hand
     assert main([*args[:4], "--scale", "2", "--bins", "1"]) == 0
     assert tomllib.loads(capsys.readouterr().out)["fatigue"]["spectrum"] == [[5, 27]]
@@ -213,8 +232,9 @@ def test_a_tension_that_varies_more_than_its_mean_is_flagged(tmp_path, capsys):
     path = _history(tmp_path, tension=1e3 + 300 * load)  # 1 kN ± 1.5 kN
     h = history_spectrum(path, "lateral_N", tension_column="tension_N")
     assert h.tension is not None and h.tension.mean() == pytest.approx(1e3, rel=1e-3)
-    assert main(["spectrum", str(path), "--column", "lateral_N", "--tension-column",
-                 "tension_N"]) == 0  # fmt: skip
+    assert (
+        main(["spectrum", str(path), "--column", "lateral_N", "--tension-column", "tension_N"]) == 0
+    )
     flagged = [line for line in capsys.readouterr().out.splitlines() if "WARNING" in line]
     assert len(flagged) == 1 and "varies by 3000, more than its mean" in flagged[0]
 
@@ -268,9 +288,15 @@ def spectrum_run(tmp_path_factory):
     folder = tmp_path_factory.mktemp("spectrum")
     path = folder / "seven.toml"
     path.write_text(SEVEN_WIRE)
-    case = load_case(path, ["fatigue.spectrum=[[150.0, 1e6], [300.0, 1e4]]",
-                            "load.cycle=[1.0, 0.0, -1.0, 0.0]", "fatigue.end_zone=0.02",
-                            "output.fields=false"])  # fmt: skip
+    case = load_case(
+        path,
+        [
+            "fatigue.spectrum=[[150.0, 1e6], [300.0, 1e4]]",
+            "load.cycle=[1.0, 0.0, -1.0, 0.0]",
+            "fatigue.end_zone=0.02",
+            "output.fields=false",
+        ],
+    )
     results = run_sweep(case, folder / "sweep", stream=io.StringIO())
     return case, folder / "sweep", results
 
@@ -287,8 +313,9 @@ def test_the_spectrum_damage_is_the_sum_of_its_members_runs(spectrum_run):
     rows = _rows(folder / "spectrum.csv")
     assert len(rows) == 14  # 7 wires, free span and clamp zone
     for row in rows:
-        mine = [k for k, r in enumerate(first) if r["wire"] == row["wire"]
-                and r["zone"] == row["zone"]]  # fmt: skip
+        mine = [
+            k for k, r in enumerate(first) if r["wire"] == row["wire"] and r["zone"] == row["zone"]
+        ]
         assert float(row["damage"]) == pytest.approx(total[mine].max(), rel=2e-5)
         k = int(row["element"])
         assert k in mine and total[k] == pytest.approx(float(row["damage"]), rel=2e-5)
@@ -320,8 +347,13 @@ def test_the_spectrum_is_as_many_steady_cycles_of_each_members_history(spectrum_
     total = 0.0
     for amplitude, n in case.fatigue.spectrum:
         h = read_history(folder / f"lateral_{amplitude:g}" / "wire_sections.h5")
-        sigma = surface_stress(h["axial"][:, e, None], h["m1"][:, e, None], h["m2"][:, e, None],
-                               h.static["diameter"][e], psi)  # fmt: skip
+        sigma = surface_stress(
+            h["axial"][:, e, None],
+            h["m1"][:, e, None],
+            h["m2"][:, e, None],
+            h.static["diameter"][e],
+            psi,
+        )
         total += n * max(damage(np.tile(s, 3)) - damage(np.tile(s, 2)) for s in sigma.T)
     assert total > 0 and float(worst["damage"]) == pytest.approx(total, rel=1e-4)
 
@@ -335,8 +367,10 @@ def test_the_spectrum_text_gives_each_layer_and_the_tension_check(spectrum_run):
         assert re.search(line, text), line
     assert text.count("layer 0: wire 0, D = ") == 2 and text.count("layer 1: wire ") == 2
     assert "five worst contact pairs" in text and "not checked ([fatigue] breaking_strength" in text
-    dnv = sum(n * r.fatigue.tension_check["dnv"] for (_, n), r in zip(case.fatigue.spectrum,
-                                                                       results[1:], strict=True))  # fmt: skip
+    dnv = sum(
+        n * r.fatigue.tension_check["dnv"]
+        for (_, n), r in zip(case.fatigue.spectrum, results[1:], strict=True)
+    )
     assert f"DNV-OS-E301 spiral rope: D = {dnv:.3g}" in text
 
 
@@ -345,14 +379,27 @@ def _fake_member(damage: float, curve: str | None):
     and one pair, ``damage`` per cycle (NaN: no curve)."""
     d = np.nan if curve is None else damage
     report = SimpleNamespace(
-        elements={"wire": np.array([0, 0]), "layer": np.array([0, 0]), "z": np.array([0.5, 0.0]),
-                  "clamp": np.array([False, True]), "damage": np.array([d, 2 * d])},
-        crossings={"interface": np.array([0]), "wire_a": np.array([0]), "wire_b": np.array([1]),
-                   "z": np.array([0.5]), "clamp": np.array([False]), "line": np.array([True]),
-                   "damage": np.array([d])},
-        wires={"curve": np.array([curve or "not assessed"])}, end_zone=0.1, length=1.0,
+        elements={
+            "wire": np.array([0, 0]),
+            "layer": np.array([0, 0]),
+            "z": np.array([0.5, 0.0]),
+            "clamp": np.array([False, True]),
+            "damage": np.array([d, 2 * d]),
+        },
+        crossings={
+            "interface": np.array([0]),
+            "wire_a": np.array([0]),
+            "wire_b": np.array([1]),
+            "z": np.array([0.5]),
+            "clamp": np.array([False]),
+            "line": np.array([True]),
+            "damage": np.array([d]),
+        },
+        wires={"curve": np.array([curve or "not assessed"])},
+        end_zone=0.1,
+        length=1.0,
         tension_check={"dnv": 1e-9, "api": None, "range": 5.0, "mean": 1e4, "cycle": False},
-    )  # fmt: skip
+    )
     return SimpleNamespace(fatigue=report, failure="", interrupted=False)
 
 

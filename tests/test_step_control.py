@@ -80,8 +80,15 @@ def test_the_error_estimate_is_the_secant_predictors_miss(extrapolate):
         (lambda x: x**2, lambda lam, h, hp: h * (h + hp), 1.5),
         (lambda x: x**2, lambda lam, h, hp: 2 * h**2, 1.0),
     ]:
-        _, records = ramp(PathSolver(u), 1.0, 2.0, first_step=0.1, min_step=1e-3,
-                          growth=growth, extrapolate=extrapolate)  # fmt: skip
+        _, records = ramp(
+            PathSolver(u),
+            1.0,
+            2.0,
+            first_step=0.1,
+            min_step=1e-3,
+            growth=growth,
+            extrapolate=extrapolate,
+        )
         loads = np.array([1.0, *(r.load for r in records)])
         assert len(records) >= 5 and np.isnan(records[0].error)  # a ramp's first: no predictor
         for n in range(1, len(records)):
@@ -99,8 +106,16 @@ def test_a_settling_ramp_predicts_from_its_second_step_on():
         (False, [False, True, True, True]),
     ]:
         solver = PathSolver(lambda x: x**2)
-        _, records = ramp(solver, 0.0, 1.0, first_step=0.1, min_step=1e-3, growth=1.0,
-                          extrapolate=True, settles=settles)  # fmt: skip
+        _, records = ramp(
+            solver,
+            0.0,
+            1.0,
+            first_step=0.1,
+            min_step=1e-3,
+            growth=1.0,
+            extrapolate=True,
+            settles=settles,
+        )
         assert [p for _, p in solver.attempts[:4]] == predicted
         assert np.isnan(records[0].error)
         assert np.isnan(records[1].error) == settles
@@ -110,8 +125,15 @@ def test_a_settling_ramp_predicts_from_its_second_step_on():
 def test_on_a_linear_path_the_steps_grow_to_the_largest_and_end_exactly():
     """No miss on u = 2λ: after the first step (the growth rule: ×1.5) every step doubles
     (grow_max) up to max_step, and the ramp ends on its end."""
-    _, records = ramp(PathSolver(lambda x: 2 * x), 0.0, 1.0, first_step=0.01, min_step=1e-4,
-                      max_step=0.1, controller=ErrorControl())  # fmt: skip
+    _, records = ramp(
+        PathSolver(lambda x: 2 * x),
+        0.0,
+        1.0,
+        first_step=0.01,
+        min_step=1e-4,
+        max_step=0.1,
+        controller=ErrorControl(),
+    )
     h = increments(records, 0.0)
     assert h[:6] == pytest.approx([0.01, 0.015, 0.03, 0.06, 0.1, 0.1], rel=1e-12)
     assert np.all(h[4:-1] == pytest.approx(0.1, rel=1e-12)) and h[-1] <= 0.1
@@ -125,8 +147,9 @@ def test_the_steps_settle_where_the_miss_is_the_tolerance(c):
     h* = safety √(tol / 2c), with a miss safety² tol: ten times smaller steps for 100 times
     the curvature."""
     control = ErrorControl(tol=1e-3, safety=0.9)
-    _, records = ramp(PathSolver(lambda x: c * x**2), 0.0, 1.0, first_step=1e-3,
-                      min_step=1e-6, controller=control)  # fmt: skip
+    _, records = ramp(
+        PathSolver(lambda x: c * x**2), 0.0, 1.0, first_step=1e-3, min_step=1e-6, controller=control
+    )
     h = increments(records, 0.0)
     late = slice(len(h) // 2, -1)  # settled, before the last (truncated) step
     assert h[late] == pytest.approx(0.9 * np.sqrt(1e-3 / (2 * c)), rel=0.02)
@@ -137,8 +160,14 @@ def test_the_steps_settle_where_the_miss_is_the_tolerance(c):
 def test_the_steps_shrink_along_a_ramp_whose_curvature_grows():
     """u = exp(3λ): u'' grows e^{1.5}-fold from λ = 0.5 to 1, so the settled steps, ∝ 1/√u'',
     shrink by e^{-0.75} = 0.47 over that half."""
-    _, records = ramp(PathSolver(lambda x: np.exp(3 * x)), 0.0, 1.0, first_step=1e-3,
-                      min_step=1e-6, controller=ErrorControl(tol=1e-4))  # fmt: skip
+    _, records = ramp(
+        PathSolver(lambda x: np.exp(3 * x)),
+        0.0,
+        1.0,
+        first_step=1e-3,
+        min_step=1e-6,
+        controller=ErrorControl(tol=1e-4),
+    )
     h = increments(records, 0.0)
     loads = np.array([r.load for r in records])
     middle = h[np.argmin(np.abs(loads - 0.5))]
@@ -153,15 +182,23 @@ def test_a_step_over_a_kink_is_rejected_and_taken_smaller():
     rejection the step is kept, with its miss."""
     solver = PathSolver(lambda x: 10 * max(x - 0.5, 0.0))
     control = ErrorControl(tol=1e-3, reject_factor=4.0)
-    _, records = ramp(solver, 0.0, 1.0, first_step=0.07, min_step=1e-4, growth=1.0,
-                      controller=control)  # fmt: skip
+    _, records = ramp(
+        solver, 0.0, 1.0, first_step=0.07, min_step=1e-4, growth=1.0, controller=control
+    )
     assert all(r.error <= 4e-3 for r in records[1:])
     rejected = [r for r in records if r.rejections]
     assert rejected and all(r.failed_iterations == 2 * r.rejections for r in rejected)
     assert len(solver.attempts) == len(records) + sum(r.rejections for r in records)
     assert records[-1].load == pytest.approx(1.0, abs=1e-12)
-    _, kept = ramp(PathSolver(solver.u), 0.0, 1.0, first_step=0.07, min_step=1e-4,
-                   growth=1.0, controller=replace(control, reject_factor=np.inf))  # fmt: skip
+    _, kept = ramp(
+        PathSolver(solver.u),
+        0.0,
+        1.0,
+        first_step=0.07,
+        min_step=1e-4,
+        growth=1.0,
+        controller=replace(control, reject_factor=np.inf),
+    )
     assert max(r.error for r in kept[1:]) > 4e-3 and not any(r.rejections for r in kept)
 
 
@@ -175,8 +212,9 @@ def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halve
         return predicted and lam == pytest.approx(0.4)
 
     solver = PathSolver(lambda x: x**2, predictor_fails)
-    _, records = ramp(solver, 0.0, 0.5, first_step=0.1, min_step=1e-3, growth=1.0,
-                      extrapolate=True, retry=True)  # fmt: skip
+    _, records = ramp(
+        solver, 0.0, 0.5, first_step=0.1, min_step=1e-3, growth=1.0, extrapolate=True, retry=True
+    )
     assert [r.load for r in records] == pytest.approx([0.1, 0.2, 0.3, 0.4, 0.5])
     assert solver.attempts[3:5] == [(pytest.approx(0.4), True), (pytest.approx(0.4), False)]
     assert (records[3].retries, records[3].cuts, records[3].failed_iterations) == (1, 0, 3)
@@ -188,8 +226,7 @@ def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halve
     commit = solver.commit
     solver.committed = 0.0
     solver.commit = lambda: (commit(), setattr(solver, "committed", solver.load))
-    _, records = ramp(solver, 0.0, 0.6, first_step=0.2, min_step=1e-3, growth=2.0,
-                      retry=True)  # fmt: skip
+    _, records = ramp(solver, 0.0, 0.6, first_step=0.2, min_step=1e-3, growth=2.0, retry=True)
     tried = [(round(lam, 9), p) for lam, p in solver.attempts]
     # λ = 0.2, then 0.6 (+0.4) fails, its retry with the predictor fails, 0.4 (+0.2) fails
     # (no second retry), 0.3 (+0.1) converges
@@ -197,8 +234,9 @@ def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halve
     assert (records[1].load, records[1].retries, records[1].cuts) == (pytest.approx(0.3), 1, 2)
 
     first_fails = PathSolver(lambda x: x**2, lambda lam, predicted: lam == pytest.approx(0.2))
-    _, records = ramp(first_fails, 0.0, 0.3, first_step=0.2, min_step=1e-3, retry=True,
-                      extrapolate=True)  # fmt: skip
+    _, records = ramp(
+        first_fails, 0.0, 0.3, first_step=0.2, min_step=1e-3, retry=True, extrapolate=True
+    )
     assert [round(lam, 9) for lam, _ in first_fails.attempts[:2]] == [0.2, 0.1]
     assert records[0].retries == 0 and records[0].cuts == 1
 
@@ -207,8 +245,9 @@ def test_a_controlled_ramp_resumed_from_any_step_takes_the_same_steps():
     """``RampState`` (the next increment and the last step's increments) is all the controller
     needs: a ramp continued from the state of step k takes the steps of the whole one."""
     u = lambda x: np.sin(3 * x)  # noqa: E731
-    kwargs = dict(first_step=0.02, min_step=1e-5, controller=ErrorControl(tol=1e-4),
-                  extrapolate=True)  # fmt: skip
+    kwargs = dict(
+        first_step=0.02, min_step=1e-5, controller=ErrorControl(tol=1e-4), extrapolate=True
+    )
     whole, states = PathSolver(u), []
     whole.set_load(0.0)
     stepper = LoadStepper(whole, **kwargs)
@@ -220,8 +259,9 @@ def test_a_controlled_ramp_resumed_from_any_step_takes_the_same_steps():
     resumed = PathSolver(u)
     resumed.w.x.array[:] = resumed.path(records[k].load)
     resumed.commit()
-    rest = LoadStepper(resumed, **kwargs).ramp(resumed.set_load, records[k].load, 1.0,
-                                               resume=states[k])  # fmt: skip
+    rest = LoadStepper(resumed, **kwargs).ramp(
+        resumed.set_load, records[k].load, 1.0, resume=states[k]
+    )
     assert [r.load for r in rest] == [r.load for r in records[k + 1 :]]
     assert [r.error for r in rest] == [r.error for r in records[k + 1 :]]
 
@@ -243,12 +283,20 @@ def run_seven_wire(tmp_path: Path, scale: float = 1.0, controller=None) -> tuple
         tension = stage.parameter == "tension"
         k = 1 / 8 if tension else scale
         stepper = LoadStepper(
-            problem.solver, k * stage.first_step, k * stage.min_step,
-            max_step=k * stage.max_step, growth=stage.growth,
-            extrapolate=stage.extrapolate, controller=None if tension else controller,
-        )  # fmt: skip
-        records = stepper.ramp(lambda v, name=stage.parameter: setup.set(name, v),
-                               setup.get(stage.parameter), stage.target, stage.name)  # fmt: skip
+            problem.solver,
+            k * stage.first_step,
+            k * stage.min_step,
+            max_step=k * stage.max_step,
+            growth=stage.growth,
+            extrapolate=stage.extrapolate,
+            controller=None if tension else controller,
+        )
+        records = stepper.ramp(
+            lambda v, name=stage.parameter: setup.set(name, v),
+            setup.get(stage.parameter),
+            stage.target,
+            stage.name,
+        )
         steps += len(records)
     w = problem.w.x.array.reshape(-1, 6)[:, :3].copy()
     problem.solver.destroy()
@@ -268,8 +316,10 @@ def test_the_controlled_seven_wire_run_is_as_close_to_halved_steps_as_the_rule(t
     controlled, n_controlled = run_seven_wire(tmp_path, 1.0, ErrorControl())
     error_rule = np.abs(rule - reference).max()
     error_controlled = np.abs(controlled - reference).max()
-    print(f"steps: halved {n_half}, rule {n_rule}, controlled {n_controlled}; "
-          f"max |Δu| against halved: rule {error_rule:.3e} m, controlled {error_controlled:.3e} m")  # fmt: skip
+    print(
+        f"steps: halved {n_half}, rule {n_rule}, controlled {n_controlled}; "
+        f"max |Δu| against halved: rule {error_rule:.3e} m, controlled {error_controlled:.3e} m"
+    )
     assert error_controlled <= error_rule
 
 
@@ -283,10 +333,16 @@ def test_a_case_file_chooses_the_step_control(tmp_path, control):
     ``lateral_max`` (150 N) and what is left of the leg."""
     case = load_case(
         Path(__file__).parents[1] / "cases" / "quick_1x6.toml",
-        [f'steps.control="{control}"', "steps.error_tolerance=1.0", "load.cycle=[1.0]",
-         "output.fields=false", "output.plots=false", "output.checkpoint=false",
-         "fatigue.outputs=false"],
-    )  # fmt: skip
+        [
+            f'steps.control="{control}"',
+            "steps.error_tolerance=1.0",
+            "load.cycle=[1.0]",
+            "output.fields=false",
+            "output.plots=false",
+            "output.checkpoint=false",
+            "fatigue.outputs=false",
+        ],
+    )
     result = run_case(case, tmp_path / control, stream=io.StringIO())
     assert not result.failure
     leg = [s for s in result.steps if s.stage == "leg 1"]

@@ -22,10 +22,19 @@ from strand_cases import SEVEN_WIRE
 
 MEAN, SWING = 10e3, 2e3  # N
 CYCLE = [
-    "--set", 'load.kind="tension_cycle"', "--set", f"load.tension_swing={SWING}",
-    "--set", "load.cycle=[1.0, -1.0, 0.0]", "--set", "steps.tension_swing=1e3",
-    "--set", "steps.tension_swing_max=2e3", "--set", "output.fields=false",
-]  # fmt: skip
+    "--set",
+    'load.kind="tension_cycle"',
+    "--set",
+    f"load.tension_swing={SWING}",
+    "--set",
+    "load.cycle=[1.0, -1.0, 0.0]",
+    "--set",
+    "steps.tension_swing=1e3",
+    "--set",
+    "steps.tension_swing_max=2e3",
+    "--set",
+    "output.fields=false",
+]
 
 
 def _rows(path) -> list[dict[str, str]]:
@@ -53,8 +62,22 @@ def cycle_run(seven):
 def held_run(seven):
     """The same cycle with a 300 N saddle load held at midspan."""
     out = seven.parent / "held"
-    assert main(["run", str(seven), "--out", str(out), *CYCLE, "--set", "load.fixed_lateral=300.0",
-                 "--set", "output.plots=false"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "run",
+                str(seven),
+                "--out",
+                str(out),
+                *CYCLE,
+                "--set",
+                "load.fixed_lateral=300.0",
+                "--set",
+                "output.plots=false",
+            ]
+        )
+        == 0
+    )
     return out
 
 
@@ -72,9 +95,7 @@ def test_the_recorded_tension_range_is_the_one_asked(cycle_run):
     force = np.array([float(s["end_force_N"]) for s in [tensioned, *cycle]])
     assert force.max() == MEAN + SWING and force.min() == MEAN - SWING
     assert {float(s["tension_N"]) for s in cycle} == {MEAN}
-    np.testing.assert_array_equal(
-        force[1:], [MEAN + float(s["tension_swing_N"]) for s in cycle]
-    )  # fmt: skip
+    np.testing.assert_array_equal(force[1:], [MEAN + float(s["tension_swing_N"]) for s in cycle])
     for s in _rows(cycle_run / "moment_curvature.csv"):
         assert float(s["axial_sum_N"]) == pytest.approx(float(s["end_force_N"]), rel=1e-5)
 
@@ -89,13 +110,19 @@ def test_wire_stress_ranges_follow_the_fibre_model(cycle_run, seven):
     rows = _rows(cycle_run / "wire_stresses.csv")
     for i, lay in enumerate(cable.layers):
         expected = lay.wire.E * math.cos(lay.alpha) ** 2 * 2 * SWING / ea
-        ranges = np.array([float(r["range_MPa"]) * 1e6 for r in rows
-                           if int(r["layer"]) == i and 0.025 <= float(r["z_m"]) <= 0.075])  # fmt: skip
+        ranges = np.array(
+            [
+                float(r["range_MPa"]) * 1e6
+                for r in rows
+                if int(r["layer"]) == i and 0.025 <= float(r["z_m"]) <= 0.075
+            ]
+        )
         assert len(ranges) > 10
         np.testing.assert_allclose(ranges, expected, rtol=0.01)
     summary = (cycle_run / "summary.txt").read_text()
-    change = re.search(r"end displacement change \+([\d.]+) µm, fibre model .* \+([\d.]+) µm",
-                       summary)  # fmt: skip
+    change = re.search(
+        r"end displacement change \+([\d.]+) µm, fibre model .* \+([\d.]+) µm", summary
+    )
     assert change and float(change[1]) == pytest.approx(float(change[2]), rel=0.01)
     assert float(change[2]) == pytest.approx(1e6 * SWING * 0.1 / ea, rel=1e-3)
 
@@ -136,8 +163,10 @@ def test_the_midspan_section_carries_the_end_force(run, request):
     st, case = sections.static, load_case(out / "case.toml")
     cos = np.cos([lay.alpha for lay in case.cable.layers])
     mid = case.mesh.length / 2
-    nearest = [np.flatnonzero(st["wire"] == w)[np.argmin(np.abs(st["z"][st["wire"] == w] - mid))]
-               for w in np.unique(st["wire"])]  # fmt: skip
+    nearest = [
+        np.flatnonzero(st["wire"] == w)[np.argmin(np.abs(st["z"][st["wire"] == w] - mid))]
+        for w in np.unique(st["wire"])
+    ]
     axial_only = sections["axial"][:, nearest] @ cos[st["layer"][nearest]]
     assert np.max(np.abs(axial_only / end - 1)) > 5e-6
     # a history written before midspan_force was recorded: the axial sum stands in
@@ -190,12 +219,16 @@ def test_the_summary_after_tension_is_before_the_held_saddle_load(cycle_run, hel
 def test_a_tension_cycle_that_compresses_the_strand_is_refused():
     """One line each: the lowest end force T − swing at or below 0; a held saddle shorter than
     the mesh's elements."""
-    with pytest.raises(CaseError, match=r"tension_swing = 12000 N takes the end force down to "
-                                        r"-2000 N .* must stay above 0"):  # fmt: skip
+    with pytest.raises(
+        CaseError,
+        match=r"tension_swing = 12000 N takes the end force down to "
+        r"-2000 N .* must stay above 0",
+    ):
         case_from_dict({"load": {"kind": "tension_cycle", "tension": 10e3, "tension_swing": 12e3}})
     with pytest.raises(CaseError, match=r"saddle_length = 0.001 m"):
-        case_from_dict({"load": {"kind": "tension_cycle", "fixed_lateral": 100.0,
-                                 "saddle_length": 1e-3}})  # fmt: skip
+        case_from_dict(
+            {"load": {"kind": "tension_cycle", "fixed_lateral": 100.0, "saddle_length": 1e-3}}
+        )
     ok = case_from_dict({"load": {"kind": "tension_cycle", "saddle_length": 1e-3}})
     assert ok.load.tension_swing == 10e3 and ok.load.fixed_lateral == 0.0
 
@@ -211,8 +244,10 @@ def test_the_tension_cycle_case_file_reads_as_its_comments_say():
     kind = kind_of(case)
     assert kind.name == "tension_cycle" and case.unset_loads == ()
     assert (case.load.tension, case.load.tension_swing, case.load.fixed_lateral) == (
-        10e3, 3e3, 300.0
-    )  # fmt: skip
+        10e3,
+        3e3,
+        300.0,
+    )
     stages = kind.programme(case).stages
     assert [s.parameter for s in stages] == ["tension", "lateral"] + ["tension_swing"] * 3
     assert [case.load.tension + s.target for s in stages[2:]] == [13e3, 7e3, 10e3]

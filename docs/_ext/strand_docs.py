@@ -54,14 +54,21 @@ def settings_reference() -> str:
         "|---|---|---|",
     ]
     comments = {**field_comments(cable.Wire), **field_comments(cable.Layer)}
-    names = {"diameter": "wire diameter", "E": "Young's modulus", "nu": "Poisson's ratio",
-             "wires": "number of wires", "lay_angle": "lay angle", "lay": "lay hand"}  # fmt: skip
+    names = {
+        "diameter": "wire diameter",
+        "E": "Young's modulus",
+        "nu": "Poisson's ratio",
+        "wires": "number of wires",
+        "lay_angle": "lay angle",
+        "lay": "lay hand",
+    }
     keys = [f.name for f in fields(cable.Wire)] + [f.name for f in fields(cable.Layer)]
     for key in [k for k in keys if k in cable.CORE_KEYS | cable.LAYER_KEYS]:
         where = ", ".join(
-            name for name, keys in (("core", cable.CORE_KEYS), ("layer", cable.LAYER_KEYS))
+            name
+            for name, keys in (("core", cable.CORE_KEYS), ("layer", cable.LAYER_KEYS))
             if key in keys
-        )  # fmt: skip
+        )
         text = ", ".join(t for t in (names.get(key), comments.get(key)) if t and t != "-")
         out.append(f"| `{key}` | {where} | {_cell(text)} |")
     optional = [f.name for f in fields(cable.Wire) if default_toml(f) != "required"]
@@ -159,8 +166,11 @@ def demo_page(path: Path) -> tuple[str, list[str]]:
     cells, figures = recorded(path.stem)
     printed = {c["code"]: c["output"] for c in cells if c["output"].strip()}
     code = {c.source for c in nb.cells if c.cell_type == "code"}
-    stale = [f"a recorded cell is not in the demo: {c['code'][:60]!r}..." for c in cells
-             if c["code"] not in code]  # fmt: skip
+    stale = [
+        f"a recorded cell is not in the demo: {c['code'][:60]!r}..."
+        for c in cells
+        if c["code"] not in code
+    ]
     placed = set()
     shown = []
     for cell in nb.cells:

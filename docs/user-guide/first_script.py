@@ -69,7 +69,9 @@ k = 1 / (L**3 / (192 * section.EI) + L / (4 * section.GA))  # clamped span, cent
 if comm.rank == 0:
     print(f"{len(steps)} load steps, {sum(rec.iterations for rec in steps)} Newton iterations")
     print(f"contact force p = {p:.10g} N; closed form P/(2 + k/K_N) = {P / (2 + k / K_N):.10g} N")
-    print(f"deflection under the load = {deflection:.10g} m; closed form (P - p)/k = "
-          f"{(P - p) / k:.10g} m")  # fmt: skip
+    print(
+        f"deflection under the load = {deflection:.10g} m; closed form (P - p)/k = "
+        f"{(P - p) / k:.10g} m"
+    )
 assert abs(p / (P / (2 + k / K_N)) - 1) < 1e-6  # the two wires share the load
 assert abs(deflection / ((P - p) / k) - 1) < 5e-3  # two-node cells: stiff by O(1/n²)

@@ -106,9 +106,11 @@ POFFENBERGER_SWART_DISTANCE = 0.089
 
 
 def poffenberger_swart(
-    cable: Cable, tension: float, distance: float = POFFENBERGER_SWART_DISTANCE,
+    cable: Cable,
+    tension: float,
+    distance: float = POFFENBERGER_SWART_DISTANCE,
     variant: str = "EPRI",
-) -> float:  # fmt: skip
+) -> float:
     """K (Pa/m) of σ_a = K Y_b: the outer wires' stress amplitude (zero to peak) per peak-to-peak
     displacement Y_b at ``distance`` (m) from the clamp, under ``tension`` (N), with EI_min of
     ``variant`` and the outer layer's E and diameter."""

@@ -46,8 +46,11 @@ def costello_stiffness(cable: Cable, step: float = 1e-7) -> Array:
             T, Gp, H = w.E * w.area * xi, w.E * inertia * d_kappa, G * 2 * inertia * d_tau
             N = H * kappa - Gp * tau
             F += lay.wires * (T * np.cos(a) + N * np.sin(a))
-            M += lay.wires * h * (H * np.cos(a) + Gp * np.sin(a) + T * r * np.sin(a)
-                                  - N * r * np.cos(a))  # fmt: skip
+            M += (
+                lay.wires
+                * h
+                * (H * np.cos(a) + Gp * np.sin(a) + T * r * np.sin(a) - N * r * np.cos(a))
+            )
         return np.array([F, M])
 
     d_eps = (resultants(step, 0.0) - resultants(-step, 0.0)) / (2 * step)

@@ -60,10 +60,12 @@ def ei_min(cable: Cable, variant: str = "EPRI") -> float:
     """Bending stiffness of the strand with every wire slipping freely (N m²)."""
     factor = EI_MIN_VARIANTS[variant]
     return sum(
-        max(lay.wires, 1) * lay.wire.E * _second_moment(lay.wire.diameter)
+        max(lay.wires, 1)
+        * lay.wire.E
+        * _second_moment(lay.wire.diameter)
         * (factor(lay.alpha, lay.wire.nu) if lay.wires else 1.0)
         for lay in cable.layers
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)
@@ -87,9 +89,13 @@ class StickSlipLaw:
     """
 
     def __init__(
-        self, cable: Cable, tension: float, rule: str = "cumulative", capstan: bool = False,
+        self,
+        cable: Cable,
+        tension: float,
+        rule: str = "cumulative",
+        capstan: bool = False,
         ei_min_variant: str = "EPRI",
-    ):  # fmt: skip
+    ):
         if rule not in ("cumulative", "own_tension"):
             raise ValueError(f"rule {rule!r}: choose cumulative or own_tension")
         self.cable, self.tension, self.rule, self.capstan = cable, tension, rule, capstan
@@ -136,8 +142,9 @@ class StickSlipLaw:
     def full_slip(self) -> Array:
         """κ_t = T (e^{λπ/2} − 1)/(K r), λ = f/T, per helical layer (docs/theory.md §5.4, whole quarter
         turn slipping), 1/m."""
-        return np.array([l.T * (np.exp(l.f / l.T * np.pi / 2) - 1) / (l.K * l.r)
-                         for l in self.layers])  # fmt: skip
+        return np.array(
+            [l.T * (np.exp(l.f / l.T * np.pi / 2) - 1) / (l.K * l.r) for l in self.layers]
+        )
 
     @property
     def slip_moment(self) -> Array:

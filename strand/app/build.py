@@ -84,10 +84,14 @@ def newton_options(case: Case) -> NewtonOptions:
     force = s.balance * case.load.tension / case.cable.n_wires
     diameter = max(layer.wire.diameter for layer in case.cable.layers)
     return NewtonOptions(
-        atol=s.tolerance, max_it=s.max_iterations, force_tol=force, moment_tol=force * diameter,
-        stall_after=STALL_AFTER if s.stall else 0, linesearch=s.line_search,
+        atol=s.tolerance,
+        max_it=s.max_iterations,
+        force_tol=force,
+        moment_tol=force * diameter,
+        stall_after=STALL_AFTER if s.stall else 0,
+        linesearch=s.line_search,
         iteration=s.iteration,
-    )  # fmt: skip
+    )
 
 
 def step_control(case: Case) -> dict:
@@ -125,8 +129,11 @@ def build_problem(
     kind = kind_of(case) if kind is None else kind
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     if len(geometry.cells) > LARGE_MESH:
-        print(size_announcement(len(geometry.cells), 6 * len(geometry.points)), file=stream,
-              flush=True)  # fmt: skip
+        print(
+            size_announcement(len(geometry.cells), 6 * len(geometry.points)),
+            file=stream,
+            flush=True,
+        )
     options = newton_options(case)
     setup, programme = setup_and_programme(case, kind)
     problem = StrandProblem(geometry, case.contact, options, setup=setup)
@@ -142,8 +149,11 @@ def build_problem(
     name, flops = problem.ordering
     if flops:
         others = ", ".join(f"{k.upper()} {v:.2g}" for k, v in flops.items() if k != name)
-        print(f"MUMPS ordering {name.upper()}: {flops[name]:.2g} operations per LU ({others})",
-              file=stream, flush=True)  # fmt: skip
+        print(
+            f"MUMPS ordering {name.upper()}: {flops[name]:.2g} operations per LU ({others})",
+            file=stream,
+            flush=True,
+        )
     if not case.contact.friction and case.contact.normal == "frozen":
         print(
             "frictionless: contact normals frozen at t = 0 (geometry-following normals do not "
@@ -175,7 +185,16 @@ def restart_from(problem: StrandProblem, programme: LoadProgramme, checkpoint, p
     position = restore(problem, checkpoint)
     stage = programme.stages[checkpoint.stage]
     state = problem.setup.state()
-    step = RunStep(checkpoint.number, stage.name, stage.parameter,
-                   problem.setup.get(stage.parameter), checkpoint.time, 0, 0, 0.0, 0.0,
-                   state)  # fmt: skip
+    step = RunStep(
+        checkpoint.number,
+        stage.name,
+        stage.parameter,
+        problem.setup.get(stage.parameter),
+        checkpoint.time,
+        0,
+        0,
+        0.0,
+        0.0,
+        state,
+    )
     return Start(position, step)

@@ -348,8 +348,10 @@ class CableEdits(list):
             else:
                 n = len(out["layer"])
                 if not 1 <= path[1] <= n:
-                    raise CaseError(f"--set {item!r}: the cable {out['name']!r} has layers 1 to "
-                                    f"{n} (layer 1 the innermost helical one)")  # fmt: skip
+                    raise CaseError(
+                        f"--set {item!r}: the cable {out['name']!r} has layers 1 to "
+                        f"{n} (layer 1 the innermost helical one)"
+                    )
                 out["layer"][path[1] - 1][path[2]] = value
         return out
 
@@ -364,16 +366,22 @@ def _cable_path(item: str, parts: list[str]) -> tuple:
         return ("name",)
     if table == "core" and len(rest) == 1:
         if rest[0] not in CORE_KEYS:
-            raise CaseError(f"--set {item!r}: the cable's core has no key {rest[0]!r}; valid: "
-                            f"{', '.join(sorted(CORE_KEYS))}")  # fmt: skip
+            raise CaseError(
+                f"--set {item!r}: the cable's core has no key {rest[0]!r}; valid: "
+                f"{', '.join(sorted(CORE_KEYS))}"
+            )
         return ("core", rest[0])
     if table == "layer" and len(rest) == 2:
         if not rest[0].isdigit() or int(rest[0]) < 1:
-            raise CaseError(f"--set {item!r}: expected a layer number 1, 2, … after cable.layer "
-                            "(1: the innermost helical layer)")  # fmt: skip
+            raise CaseError(
+                f"--set {item!r}: expected a layer number 1, 2, … after cable.layer "
+                "(1: the innermost helical layer)"
+            )
         if rest[1] not in LAYER_KEYS:
-            raise CaseError(f"--set {item!r}: a cable layer has no key {rest[1]!r}; valid: "
-                            f"{', '.join(sorted(LAYER_KEYS))}")  # fmt: skip
+            raise CaseError(
+                f"--set {item!r}: a cable layer has no key {rest[1]!r}; valid: "
+                f"{', '.join(sorted(LAYER_KEYS))}"
+            )
         return ("layer", int(rest[0]), rest[1])
     raise CaseError(f"--set {item!r}: expected cable=<name or file> or one of {_CABLE_KEYS}")
 
@@ -396,14 +404,18 @@ def parse_settings(items: list[str]) -> dict:
         if parts[0] == "cable" and len(parts) > 1:
             edits = out.setdefault("cable", CableEdits())
             if not isinstance(edits, CableEdits):
-                raise CaseError(f"--set {item!r}: give the whole cable (--set cable=...) or edit "
-                                "the case's, not both")  # fmt: skip
+                raise CaseError(
+                    f"--set {item!r}: give the whole cable (--set cable=...) or edit "
+                    "the case's, not both"
+                )
             edits.append((_cable_path(item, parts[1:]), value, item))
         elif len(parts) == 2:
             out.setdefault(parts[0], {})[parts[1]] = value
         elif isinstance(out.get(name.strip()), CableEdits):
-            raise CaseError(f"--set {item!r}: give the whole cable (--set cable=...) or edit the "
-                            "case's, not both")  # fmt: skip
+            raise CaseError(
+                f"--set {item!r}: give the whole cable (--set cable=...) or edit the "
+                "case's, not both"
+            )
         else:
             out[name.strip()] = value
     return out

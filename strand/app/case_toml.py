@@ -67,7 +67,7 @@ def cable_table(cable: Cable) -> dict:
                 "friction": lay.friction,
             }
             for lay in layers
-        ],  # fmt: skip
+        ],
     }
 
 

@@ -120,11 +120,15 @@ def _spectrum_sweep(case: Case) -> Case:
         return case
     amplitudes = tuple(a for a, _ in spectrum)
     if not case.fatigue.outputs:
-        raise CaseError("[fatigue] spectrum needs [fatigue] outputs = true (each amplitude's "
-                        "damage comes from its fatigue report)")  # fmt: skip
+        raise CaseError(
+            "[fatigue] spectrum needs [fatigue] outputs = true (each amplitude's "
+            "damage comes from its fatigue report)"
+        )
     if not any(case.load.cycle):
-        raise CaseError(f"[fatigue] spectrum needs a cycle with a target other than 0 (cycle = "
-                        f"{list(case.load.cycle)} stays at zero load)")  # fmt: skip
+        raise CaseError(
+            f"[fatigue] spectrum needs a cycle with a target other than 0 (cycle = "
+            f"{list(case.load.cycle)} stays at zero load)"
+        )
     if sweep and sorted(sweep) != sorted(amplitudes):
         raise CaseError(
             f"[fatigue] spectrum amplitudes {list(amplitudes)} differ from [load] sweep = "

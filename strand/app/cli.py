@@ -157,8 +157,9 @@ def _spectrum(args) -> int:
 
     if args.bins < 1:
         raise HistoryError(f"--bins {args.bins}: expected a positive whole number of classes")
-    h = history_spectrum(args.history, args.column, args.bins, args.time_column,
-                         args.tension_column, args.scale)  # fmt: skip
+    h = history_spectrum(
+        args.history, args.column, args.bins, args.time_column, args.tension_column, args.scale
+    )
     text = spectrum_block(h, args.history)
     if args.output:
         from pathlib import Path
@@ -220,14 +221,16 @@ def main(argv: list[str] | None = None) -> int:
     )
     run.add_argument("--out", help="results folder (default: [output] folder, or results/<case>)")
     run.add_argument(
-        "--overwrite", action="store_true",
+        "--overwrite",
+        action="store_true",
         help="replace the results of an earlier run in the folder (refused otherwise)",
-    )  # fmt: skip
+    )
     run.add_argument(
-        "--restart", metavar="CHECKPOINT",
+        "--restart",
+        metavar="CHECKPOINT",
         help="continue from a checkpoint of an earlier run of the same strand (its "
         "checkpoint.h5 or tensioned.h5) with this case's loads; give a new --out",
-    )  # fmt: skip
+    )
     mesh = sub.add_parser(
         "mesh", help="build the strand mesh and contact pairs; print and draw them"
     )
@@ -262,27 +265,34 @@ def main(argv: list[str] | None = None) -> int:
     )
     spectrum.add_argument("history", help="the history file: a header line of column names")
     spectrum.add_argument(
-        "--column", required=True,
+        "--column",
+        required=True,
         help="the column to count, in the unit of the case's parameter (lateral N, curvature "
         "1/m, tension_swing N)",
-    )  # fmt: skip
+    )
     spectrum.add_argument("--bins", type=int, default=3, help="classes (default: %(default)s)")
     spectrum.add_argument("--time-column", default="", help="the time column: the duration")
     spectrum.add_argument(
-        "--tension-column", default="",
+        "--tension-column",
+        default="",
         help="a tension column (N): its mean, for [load] tension, and a line if it varies more",
-    )  # fmt: skip
+    )
     spectrum.add_argument(
-        "--scale", type=float, default=1.0,
+        "--scale",
+        type=float,
+        default=1.0,
         help="multiply the counts: the times the history recurs in the spectrum's period",
-    )  # fmt: skip
+    )
     spectrum.add_argument("--output", help="also write the lines to this file")
     for p in (run, mesh, compare):
         p.add_argument(
-            "--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+            "--set",
+            action="append",
+            default=[],
+            metavar="SECTION.KEY=VALUE",
             help="change one setting of the case (TOML value), e.g. --set load.tension=20e3; "
             "repeatable",
-        )  # fmt: skip
+        )
     args = parser.parse_args(argv)
     from ..cable.description import CableError
     from ..model.checkpoint import CheckpointError

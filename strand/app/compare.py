@@ -36,8 +36,14 @@ def force_differences(a: CellResults, b: CellResults, n_layers: int) -> list[dic
         diff = np.abs(b.axial[m] - a.axial[m]) / span
         sector = sector_of(a.phi[m], SECTORS)
         per = np.array([diff[sector == s].max(initial=0.0) for s in range(SECTORS)])
-        rows.append({"layer": layer, "range": span, "max": float(diff.max()),
-                     "sectors": per if layer else np.full(SECTORS, np.nan)})  # fmt: skip
+        rows.append(
+            {
+                "layer": layer,
+                "range": span,
+                "max": float(diff.max()),
+                "sectors": per if layer else np.full(SECTORS, np.nan),
+            }
+        )
     return rows
 
 
@@ -65,9 +71,13 @@ def overlay_figure(a: CellResults, b: CellResults, n_layers: int, title: str, pa
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(
-        n_layers, 2, figsize=(13, 2.2 * n_layers + 0.6), sharex=True, squeeze=False,
+        n_layers,
+        2,
+        figsize=(13, 2.2 * n_layers + 0.6),
+        sharex=True,
+        squeeze=False,
         gridspec_kw={"width_ratios": [3, 2]},
-    )  # fmt: skip
+    )
     colours = plt.get_cmap("tab10")
     width = 360 // SECTORS
     for layer in range(n_layers):
@@ -80,8 +90,9 @@ def overlay_figure(a: CellResults, b: CellResults, n_layers: int, title: str, pa
         for s in np.unique(sector):
             k = sector == s
             label = f"{-180 + width * s}…{-180 + width * (s + 1)}°" if layer else "core"
-            dx.scatter(1e3 * a.z[m][k], (b.axial - a.axial)[m][k], s=2, color=colours(s),
-                       label=label)  # fmt: skip
+            dx.scatter(
+                1e3 * a.z[m][k], (b.axial - a.axial)[m][k], s=2, color=colours(s), label=label
+            )
         dx.set_ylabel("ΔN, large − small (N)")
     axes[0, 0].legend(markerscale=4)
     if n_layers > 1:
@@ -147,10 +158,13 @@ def compare_case(
         ]
         if case.output.plots and is_root():
             path = overlay_figure(
-                small.peak, large.peak, n_layers,
+                small.peak,
+                large.peak,
+                n_layers,
                 f"{case.cable.name}, L = {case.mesh.length:g} m: wire axial forces at the "
-                "largest lateral load", folder / "sliding_comparison.png",
-            )  # fmt: skip
+                "largest lateral load",
+                folder / "sliding_comparison.png",
+            )
             lines.append(f"figure: {path}")
     text = "\n".join(lines) + "\n"
     if is_root():

@@ -60,9 +60,10 @@ def writable_folder(folder: str | Path) -> Path:
 def _owned(folder: Path) -> list[Path]:
     """The files (and ``*.bp`` field folders) at the top of ``folder`` that a run owns."""
     return [
-        p for p in folder.iterdir()
+        p
+        for p in folder.iterdir()
         if not p.name.startswith(".") and (p.is_file() or p.suffix == ".bp")
-    ]  # fmt: skip
+    ]
 
 
 def check_writable(folder: str | Path) -> Path:
@@ -77,8 +78,9 @@ def check_writable(folder: str | Path) -> Path:
         if not parent.is_dir():
             raise FolderError(f"{folder}: cannot create the results folder ({parent} is a file)")
         if not os.access(parent, os.W_OK | os.X_OK):
-            raise FolderError(f"{folder}: cannot create the results folder ({parent} is not "
-                              "writable)")  # fmt: skip
+            raise FolderError(
+                f"{folder}: cannot create the results folder ({parent} is not writable)"
+            )
         return folder
     if not os.access(folder, os.W_OK | os.X_OK):
         raise FolderError(f"{folder}: the results folder is not writable (Permission denied)")

@@ -25,8 +25,10 @@ def _table(title: str, layers) -> list[str]:
         if np.isnan(p.gap_min):
             gap_text = f"{'no same-layer pairs':>22}"
         else:
-            gap_text = (f"{p.gap_force:7.0f} | {p.bounding[0]:6.0f} {p.bounding[1]:6.0f}  "
-                        f"{gap} ({1e6 * p.gap_min:+.2f} µm)")  # fmt: skip
+            gap_text = (
+                f"{p.gap_force:7.0f} | {p.bounding[0]:6.0f} {p.bounding[1]:6.0f}  "
+                f"{gap} ({1e6 * p.gap_min:+.2f} µm)"
+            )
         lines.append(
             f"  {p.layer:5d} {p.fibre:7.0f}  {p.crossings_below:7.0f} ({100 * share:3.0f} %)  "
             f"{p.ring:7.0f} ({p.hoop:6.0f})  {gap_text}"
@@ -48,8 +50,9 @@ def layer_pressure_lines(result, peak_text: str = "") -> list[str]:
     ]
     lines += _table("  tensioned state:", result.tensioned_layers)
     if result.peak_layers:
-        lines += _table(f"  at the largest load{' ' + peak_text if peak_text else ''}:",
-                        result.peak_layers)  # fmt: skip
+        lines += _table(
+            f"  at the largest load{' ' + peak_text if peak_text else ''}:", result.peak_layers
+        )
     return lines
 
 
@@ -69,20 +72,29 @@ def layer_pressure_figure(result, title: str, peak_text: str = "", note: str = "
     states = [("tensioned state", result.tensioned_layers)]
     if result.peak_layers:
         states.append((f"largest load {peak_text}".strip(), result.peak_layers))
-    fig, axes = plt.subplots(1, len(states), figsize=(5.5 * len(states), 4.2), squeeze=False,
-                             sharey=True)  # fmt: skip
+    fig, axes = plt.subplots(
+        1, len(states), figsize=(5.5 * len(states), 4.2), squeeze=False, sharey=True
+    )
     width = 0.27
     for ax, (name, layers) in zip(axes[0], states, strict=True):
         x = np.arange(len(layers))
-        values = [("crossings below", "tab:blue", [p.crossings_below for p in layers]),
-                  ("same-layer ring", "tab:orange", [p.ring for p in layers]),
-                  ("fibre model", "0.6", [p.fibre for p in layers])]  # fmt: skip
+        values = [
+            ("crossings below", "tab:blue", [p.crossings_below for p in layers]),
+            ("same-layer ring", "tab:orange", [p.ring for p in layers]),
+            ("fibre model", "0.6", [p.fibre for p in layers]),
+        ]
         for k, (label, colour, v) in enumerate(values):
             ax.bar(x + (k - 1) * width, np.asarray(v) / 1e3, width, color=colour, label=label)
         for i, p in enumerate(layers):
             if not np.isnan(p.gap_min):
-                ax.annotate("gap closed" if p.gap_closed else "gap open", (i, 0), fontsize=7,
-                            xytext=(0, -22), textcoords="offset points", ha="center")  # fmt: skip
+                ax.annotate(
+                    "gap closed" if p.gap_closed else "gap open",
+                    (i, 0),
+                    fontsize=7,
+                    xytext=(0, -22),
+                    textcoords="offset points",
+                    ha="center",
+                )
         ax.set_xticks(x, [f"layer {p.layer}" for p in layers])
         ax.set_title(name)
         ax.grid(alpha=0.3, axis="y")

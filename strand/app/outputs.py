@@ -103,38 +103,53 @@ def _fatigue(run: Run) -> list[Recorder] | None:
 register_output(
     "steps",
     lambda run: StepTable(run.folder, run.problem.setup.state_type, ReactionGauge(run.problem)),
-    files={"steps.csv": "one row per converged load step: stage, programme time, loads, the "
-           "set-up's measures, Newton iterations, residual (N), wall time (s)"},
-)  # fmt: skip
+    files={
+        "steps.csv": "one row per converged load step: stage, programme time, loads, the "
+        "set-up's measures, Newton iterations, residual (N), wall time (s)"
+    },
+)
 register_output(
     "axial_forces",
     lambda run: AxialForceTable(run.folder, run.parameter, run.unit),
-    files={"axial_forces.csv": "the axial force (N) of every element at every step, with its "
-           "wire, layer, height z (m) and angle"},
-)  # fmt: skip
+    files={
+        "axial_forces.csv": "the axial force (N) of every element at every step, with its "
+        "wire, layer, height z (m) and angle"
+    },
+)
 register_output(
     "moment_curvature",
     lambda run: BendingTable(run.folder, run.problem.setup.bending_type),
-    files={"moment_curvature.csv": "the set-up's section measures (bending moment, curvature, "
-           "axial sum) at every step of the cycle"},
-)  # fmt: skip
+    files={
+        "moment_curvature.csv": "the set-up's section measures (bending moment, curvature, "
+        "axial sum) at every step of the cycle"
+    },
+)
 register_output(
     "slip",
-    lambda run: SlipTable(run.folder, run.problem.geometry, run.problem.setup.measuring_zone,
-                          run.parameter, run.unit),
-    files={"slip.csv": "per interface, the share of contact pairs slipping in the measuring "
-           "zone, at every step"},
-)  # fmt: skip
+    lambda run: SlipTable(
+        run.folder, run.problem.geometry, run.problem.setup.measuring_zone, run.parameter, run.unit
+    ),
+    files={
+        "slip.csv": "per interface, the share of contact pairs slipping in the measuring "
+        "zone, at every step"
+    },
+)
 register_output("key_states", lambda run: run.key_states)
 register_output(
     "small_sliding_check",
-    lambda run: SmallSlidingMonitor(run.problem.model, run.stream, run.warnings)
-    if run.case.contact.model == "small" else None,
-)  # fmt: skip
+    lambda run: (
+        SmallSlidingMonitor(run.problem.model, run.stream, run.warnings)
+        if run.case.contact.model == "small"
+        else None
+    ),
+)
 register_output(
     "fields",
-    lambda run: FieldSeries(run.folder, run.problem, vtx=run.case.output.vtx, initial=run.fresh)
-    if run.case.output.fields else None,
+    lambda run: (
+        FieldSeries(run.folder, run.problem, vtx=run.case.output.vtx, initial=run.fresh)
+        if run.case.output.fields
+        else None
+    ),
     files={
         "fields.xdmf": "field time series for ParaView (with fields.h5): displacement, "
         "rotation, section forces, wire and layer ids; time t = k to k + 1 is stage k of "
@@ -144,7 +159,7 @@ register_output(
         "unloaded strand, then each step of steps.csv)",
         "fields.bp": "the same fields as VTX (ADIOS2), a folder: ParaView",
     },
-)  # fmt: skip
+)
 register_output(
     "fatigue_histories",
     _fatigue,

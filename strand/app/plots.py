@@ -45,8 +45,9 @@ def results_figures(case, result, problem, kind) -> list[Path]:
         for i, ax in enumerate(np.atleast_1d(axes)):
             m = peak.layer == i
             sec = sector_of(peak.phi[m])
-            sc = ax.scatter(1e3 * peak.z[m], peak.axial[m], c=sec, cmap=cmap, vmin=-0.5,
-                            vmax=7.5, s=3)  # fmt: skip
+            sc = ax.scatter(
+                1e3 * peak.z[m], peak.axial[m], c=sec, cmap=cmap, vmin=-0.5, vmax=7.5, s=3
+            )
             ax.set_ylabel(f"{'core' if i == 0 else f'layer {i}'}\nN (N)")
         ax.set_xlabel("z (mm)")
         cb = fig.colorbar(sc, ax=axes, ticks=range(8))
@@ -56,13 +57,25 @@ def results_figures(case, result, problem, kind) -> list[Path]:
         save_fig(fig, "axial_force_sectors.png", tight=False)
 
     if peak is not None and base is not None:
-        fig, axes = plt.subplots(1, n_layers - 1, sharey=True, layout="constrained",
-                                 figsize=(max(3.2 * (n_layers - 1), 6.0) + 1.0, 3.8))  # fmt: skip
+        fig, axes = plt.subplots(
+            1,
+            n_layers - 1,
+            sharey=True,
+            layout="constrained",
+            figsize=(max(3.2 * (n_layers - 1), 6.0) + 1.0, 3.8),
+        )
         near = np.abs(peak.z - L / 2) <= 0.1 * L
         for i, ax in enumerate(np.atleast_1d(axes), start=1):
             m = near & (peak.layer == i)
-            sc = ax.scatter(peak.phi[m], peak.axial[m] - base.axial[m], s=3, c=1e3 * peak.z[m],
-                            cmap="viridis", vmin=1e3 * 0.4 * L, vmax=1e3 * 0.6 * L)  # fmt: skip
+            sc = ax.scatter(
+                peak.phi[m],
+                peak.axial[m] - base.axial[m],
+                s=3,
+                c=1e3 * peak.z[m],
+                cmap="viridis",
+                vmin=1e3 * 0.4 * L,
+                vmax=1e3 * 0.6 * L,
+            )
             ax.axhline(0, color="k", lw=0.5)
             ax.set_xticks([-180, -90, 0, 90, 180])
             ax.set_title(f"layer {i}")
@@ -78,8 +91,11 @@ def results_figures(case, result, problem, kind) -> list[Path]:
     paths += kind.figures(case, result, note)
 
     if peak is not None and result.peak_w is not None:
-        paths.append(deformed_picture(case, result, problem, folder / "deformed_axial_force.png",
-                                      at_peak, note))  # fmt: skip
+        paths.append(
+            deformed_picture(
+                case, result, problem, folder / "deformed_axial_force.png", at_peak, note
+            )
+        )
     return paths
 
 
@@ -144,20 +160,35 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
     width, height = 1800, 650
     plotter = offscreen_plotter(window_size=(width, height))
     plotter.add_mesh(
-        grid, scalars="N (N)", cmap="coolwarm",
-        scalar_bar_args={"title": "wire axial force N (N)", "vertical": False, "height": 0.06,
-                         "width": 0.4, "position_x": 0.3, "position_y": 0.04,
-                         "title_font_size": 16, "label_font_size": 14, "fmt": "%.0f",
-                         "n_labels": 5, "color": "black"},
-    )  # fmt: skip
+        grid,
+        scalars="N (N)",
+        cmap="coolwarm",
+        scalar_bar_args={
+            "title": "wire axial force N (N)",
+            "vertical": False,
+            "height": 0.06,
+            "width": 0.4,
+            "position_x": 0.3,
+            "position_y": 0.04,
+            "title_font_size": 16,
+            "label_font_size": 14,
+            "fmt": "%.0f",
+            "n_labels": 5,
+            "color": "black",
+        },
+    )
     P = result.peak_step.load
     shown_as = f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"
     title = plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
         f"midspan\nat {at_peak} (downwards), T = {case.load.tension / 1e3:g} kN; "
         f"{shown_as}",
-        position=(0.5, 0.97), viewport=True, font_size=12, color="black", name="title",
-    )  # fmt: skip
+        position=(0.5, 0.97),
+        viewport=True,
+        font_size=12,
+        color="black",
+        name="title",
+    )
     title.GetTextProperty().SetJustificationToCentered()
     title.GetTextProperty().SetVerticalJustificationToTop()
     if note:
@@ -166,15 +197,31 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
     axis = np.array([0.0, 0.0, 1.0])
     start, end = (L / 2 - half) * axis, (L / 2 + half) * axis
     below = d * 1.25 * D  # the picture's down is d: under the deflected strand
-    along = plotter.add_ruler(start + below, end + below, title="z (mm, true scale)",
-                              number_labels=5, label_format="%.0f", font_size_factor=0.45,
-                              label_color="black", tick_color="black")  # fmt: skip
+    along = plotter.add_ruler(
+        start + below,
+        end + below,
+        title="z (mm, true scale)",
+        number_labels=5,
+        label_format="%.0f",
+        font_size_factor=0.45,
+        label_color="black",
+        tick_color="black",
+    )
     along.SetRange(1e3 * start[2], 1e3 * end[2])
     step = _round_length(D / (2 * factor))  # a displacement shown as up to D/2
     beside = end + 0.15 * half * axis
-    plotter.add_ruler(beside + d * step * factor, beside, flip_range=True, scale=1e3 / factor,
-                      title="deflection (mm)", number_labels=2, label_format="%.3g",
-                      font_size_factor=0.45, label_color="black", tick_color="black")  # fmt: skip
+    plotter.add_ruler(
+        beside + d * step * factor,
+        beside,
+        flip_range=True,
+        scale=1e3 / factor,
+        title="deflection (mm)",
+        number_labels=2,
+        label_format="%.3g",
+        font_size_factor=0.45,
+        label_color="black",
+        tick_color="black",
+    )
     # seen across the load, the load downwards and z to the right, in parallel projection: the
     # shown length over 80 % of the width, a little left of the middle, the axis above it (set
     # after the rulers, which reset the camera)
@@ -211,8 +258,13 @@ def fit_text(plotter, actor, margin: float = 0.02, smallest: int = 8) -> tuple[f
     prop = actor.GetTextProperty()
     while True:
         x0, x1, y0, y1 = box = text_extent(plotter, actor)
-        if (x0 >= margin * width and x1 <= (1 - margin) * width and y0 >= 0 and y1 <= height
-                or prop.GetFontSize() <= smallest):  # fmt: skip
+        if (
+            x0 >= margin * width
+            and x1 <= (1 - margin) * width
+            and y0 >= 0
+            and y1 <= height
+            or prop.GetFontSize() <= smallest
+        ):
             return box
         prop.SetFontSize(prop.GetFontSize() - 1)
 
@@ -235,8 +287,14 @@ def fatigue_figures(folder, report) -> list[Path]:
     st = read_history(folder / "contact_pairs.h5").static
     c = report.crossings
     interfaces = np.unique(st["interface"])
-    fig, axes = plt.subplots(1, len(interfaces), figsize=(max(4 * len(interfaces), 6.5), 5),
-                             sharey=True, squeeze=False, layout="constrained")  # fmt: skip
+    fig, axes = plt.subplots(
+        1,
+        len(interfaces),
+        figsize=(max(4 * len(interfaces), 6.5), 5),
+        sharey=True,
+        squeeze=False,
+        layout="constrained",
+    )
     f2, stuck = 1e-6 * c["ruiz_f2"], c["stuck"]
     positive = f2[(f2 > 0) & ~stuck]
     norm = LogNorm(positive.max() * 1e-4, positive.max()) if len(positive) else None
@@ -244,11 +302,18 @@ def fatigue_figures(folder, report) -> list[Path]:
     for ax, i in zip(axes[0], interfaces, strict=True):
         m = st["interface"] == i
         held, flat, slid = m & stuck, m & ~stuck & (f2 <= 0), m & ~stuck & (f2 > 0)
-        ax.scatter(st["angle"][held], 1e3 * st["z"][held], s=3, c="tab:blue", lw=0,
-                   label="stuck throughout")  # fmt: skip
+        ax.scatter(
+            st["angle"][held],
+            1e3 * st["z"][held],
+            s=3,
+            c="tab:blue",
+            lw=0,
+            label="stuck throughout",
+        )
         ax.scatter(st["angle"][flat], 1e3 * st["z"][flat], s=3, c="0.75", lw=0)
-        sc = ax.scatter(st["angle"][slid], 1e3 * st["z"][slid], c=f2[slid], s=5, cmap="inferno",
-                        norm=norm, lw=0)  # fmt: skip
+        sc = ax.scatter(
+            st["angle"][slid], 1e3 * st["z"][slid], c=f2[slid], s=5, cmap="inferno", norm=norm, lw=0
+        )
         for z in (report.end_zone, report.length - report.end_zone):
             if 0 < z < report.length:
                 ax.axhline(1e3 * z, color="k", ls="--", lw=0.6)
@@ -258,8 +323,11 @@ def fatigue_figures(folder, report) -> list[Path]:
         axes[0, 0].legend(loc="upper right", fontsize=7, markerscale=3)
     if norm is not None:
         fig.colorbar(sc, ax=axes[0], label="Ruiz F₂ = σ_T τ δ (MPa J/m²), worst cycle")
-    fig.suptitle("fretting map: pairs that slid, coloured by F₂\n(blue: stuck throughout; "
-                 "dashed: clamp zones)", fontsize=10)  # fmt: skip
+    fig.suptitle(
+        "fretting map: pairs that slid, coloured by F₂\n(blue: stuck throughout; "
+        "dashed: clamp zones)",
+        fontsize=10,
+    )
     paths = [save_figure(fig, folder / "fretting_map.png", None, False)]
 
     s = read_history(folder / "wire_sections.h5").static
@@ -286,16 +354,30 @@ def stress_range_figure(path: Path, sections: dict, report) -> Path:
             ax.axvline(1e3 * z, color="k", ls="--", lw=0.6)
     ps = report.poffenberger_swart
     if ps is not None and ps["holds"]:
-        ax.plot([0], [2e-6 * ps["sigma_a"]], "k*", ms=10,
-                label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)")  # fmt: skip
+        ax.plot(
+            [0],
+            [2e-6 * ps["sigma_a"]],
+            "k*",
+            ms=10,
+            label=f"Poffenberger–Swart 2σ_a at the clamp ({2e-6 * ps['sigma_a']:.1f} MPa)",
+        )
         ax.legend(fontsize=8)
-    ax.set(xlabel="z (mm)", ylabel="largest surface stress range Δσ (MPa)",
-           title="along the strand (one line per wire; dashed: clamp zones)")  # fmt: skip
+    ax.set(
+        xlabel="z (mm)",
+        ylabel="largest surface stress range Δσ (MPa)",
+        title="along the strand (one line per wire; dashed: clamp zones)",
+    )
     ax.grid(alpha=0.3)
     curve = report.curves[layer] if len(report.curves) > layer else None
     if curve is None:
-        sn.text(0.5, 0.5, f"layer {layer}: not assessed\n(no S–N curve for its wires)",
-                ha="center", va="center", transform=sn.transAxes)  # fmt: skip
+        sn.text(
+            0.5,
+            0.5,
+            f"layer {layer}: not assessed\n(no S–N curve for its wires)",
+            ha="center",
+            va="center",
+            transform=sn.transAxes,
+        )
         sn.set_axis_off()
     else:
         w = report.wires
@@ -305,8 +387,16 @@ def stress_range_figure(path: Path, sections: dict, report) -> Path:
         for suffix, marker, zone in (("_free", "o", "free span"), ("_clamp", "x", "clamp zone")):
             r = w["range" + suffix][(w["layer"] == layer) & (w["range" + suffix] > 0)]
             if len(r):
-                sn.plot(curve.life(r / 2), 1e-6 * r, marker, ms=6, color="tab:red", zorder=3,
-                        mfc="none", label=f"outer wires' largest range, {zone}")  # fmt: skip
+                sn.plot(
+                    curve.life(r / 2),
+                    1e-6 * r,
+                    marker,
+                    ms=6,
+                    color="tab:red",
+                    zorder=3,
+                    mfc="none",
+                    label=f"outer wires' largest range, {zone}",
+                )
                 lowest = min(lowest, 1e-6 * r.min())
         sn.set(
             xlabel="cycles to failure N",

@@ -100,8 +100,9 @@ class StepContext:
         if self._checkpoint is None:
             from ..model.checkpoint import capture
 
-            self._checkpoint = capture(self.problem, self.step.number, self.step.time,
-                                       self.position, self.residual)  # fmt: skip
+            self._checkpoint = capture(
+                self.problem, self.step.number, self.step.time, self.position, self.residual
+            )
         return self._checkpoint
 
     @property
@@ -160,9 +161,20 @@ class StepTable(_CsvFile):
         measured = columns(EndReactions) if gauge is not None else []
         super().__init__(
             Path(folder) / "steps.csv",
-            ["step", "stage", "time", *columns(state_type), *measured, "iterations", "cuts",
-             "failed_iterations", "factorisations", "seconds", "residual_N"],
-        )  # fmt: skip
+            [
+                "step",
+                "stage",
+                "time",
+                *columns(state_type),
+                *measured,
+                "iterations",
+                "cuts",
+                "failed_iterations",
+                "factorisations",
+                "seconds",
+                "residual_N",
+            ],
+        )
 
     def record(self, ctx: StepContext) -> None:
         s = ctx.step
@@ -171,9 +183,20 @@ class StepTable(_CsvFile):
             self.reactions[s.number] = self.gauge.measure(ctx.residual)
             measured = values(self.reactions[s.number])
         self.writer.writerow(
-            [s.number, s.stage, f"{s.time:.12g}", *values(s.state), *measured, s.iterations,
-             s.cuts, s.failed_iterations, s.factorisations, s.seconds, s.residual]
-        )  # fmt: skip
+            [
+                s.number,
+                s.stage,
+                f"{s.time:.12g}",
+                *values(s.state),
+                *measured,
+                s.iterations,
+                s.cuts,
+                s.failed_iterations,
+                s.factorisations,
+                s.seconds,
+                s.residual,
+            ]
+        )
         self.file.flush()
 
 
@@ -195,9 +218,17 @@ class AxialForceTable:
         n = len(cells.axial)
         load = ctx.problem.setup.get(self.parameter)
         table = np.column_stack(
-            [np.full(n, ctx.step.number), np.full(n, load), np.arange(n), cells.wire,
-             cells.layer, cells.z, cells.phi, cells.axial]
-        )  # fmt: skip
+            [
+                np.full(n, ctx.step.number),
+                np.full(n, load),
+                np.arange(n),
+                cells.wire,
+                cells.layer,
+                cells.z,
+                cells.phi,
+                cells.axial,
+            ]
+        )
         np.savetxt(self.file, table, delimiter=",", fmt=self.FORMAT)
         self.file.flush()
 
@@ -237,8 +268,9 @@ class FieldSeries:
         ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]
         self.setup = problem.setup
         self.loads = {f"{p}_{self.setup.units[p]}": p for p in self.setup.parameters}
-        self.writer = FieldWriter(Path(folder) / "fields.xdmf", problem.beam, ids, vtx=vtx,
-                                  loads=list(self.loads))  # fmt: skip
+        self.writer = FieldWriter(
+            Path(folder) / "fields.xdmf", problem.beam, ids, vtx=vtx, loads=list(self.loads)
+        )
         if initial:
             self.writer.write(0.0, "step 0", self._loads())
 
@@ -303,9 +335,13 @@ def state_layer_pressure(ctx: StepContext) -> list:
     model, cells = ctx.problem.model, ctx.cells
     forces = layer_wire_forces(cells.layer, cells.z, cells.axial, model.geometry.length)
     return layer_pressure(
-        model.geometry, ctx.pairs, forces, model.positions(),
-        same_layer=model.same_layer_pairs, same_layer_state=model.same_layer_history(),
-    )  # fmt: skip
+        model.geometry,
+        ctx.pairs,
+        forces,
+        model.positions(),
+        same_layer=model.same_layer_pairs,
+        same_layer_state=model.same_layer_history(),
+    )
 
 
 class SlipTable(_CsvFile):
@@ -314,8 +350,9 @@ class SlipTable(_CsvFile):
     every step, with the step's value of the cycle parameter; also kept in ``rows``
     (``SlipFractions``)."""
 
-    def __init__(self, folder: Path, geometry, zone: tuple[float, float], parameter: str,
-                 unit: str):  # fmt: skip
+    def __init__(
+        self, folder: Path, geometry, zone: tuple[float, float], parameter: str, unit: str
+    ):
         pairs = geometry.pairs
         z = geometry.points[pairs.a, 2]
         inside = (z >= zone[0]) & (z <= zone[1])

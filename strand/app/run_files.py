@@ -54,8 +54,9 @@ def folder_readme(folder: str | Path) -> str:
     """The ``README.txt`` of a run's ``folder``: each file and folder at its top, with what it
     holds."""
     folder = Path(folder)
-    names = sorted({*(p.name for p in folder.iterdir() if not p.name.startswith(".")),
-                    "README.txt"})  # fmt: skip
+    names = sorted(
+        {*(p.name for p in folder.iterdir() if not p.name.startswith(".")), "README.txt"}
+    )
     width = max(len(n) for n in names)
     lines = [
         "The files of this strand run. Every column, unit and meaning: the outputs reference,",
@@ -64,8 +65,9 @@ def folder_readme(folder: str | Path) -> str:
     ]
     described = outputs()
     for name in names:
-        what = described.get(name, "a sub-folder: a run of its own" if (folder / name).is_dir()
-                           else "")  # fmt: skip
+        what = described.get(
+            name, "a sub-folder: a run of its own" if (folder / name).is_dir() else ""
+        )
         lines.append(f"{name:<{width}}  {what}".rstrip())
     return "\n".join(lines) + "\n"
 

@@ -74,18 +74,33 @@ class Progress:
 
 
 def case_recorders(
-    case: Case, problem: StrandProblem, folder: Path, parameter: str, key_states: KeyStates,
-    evaluator: CellEvaluator, stream, *, warnings: list[str], fresh: bool = True,
-) -> list[Recorder]:  # fmt: skip
+    case: Case,
+    problem: StrandProblem,
+    folder: Path,
+    parameter: str,
+    key_states: KeyStates,
+    evaluator: CellEvaluator,
+    stream,
+    *,
+    warnings: list[str],
+    fresh: bool = True,
+) -> list[Recorder]:
     """The recorders of the registered outputs (``outputs``) the case's settings ask for, in
     the order registered, writing into ``folder``; ``parameter``: the cycle's load parameter;
     ``fresh``: the run starts from the unloaded strand (its field
     series opens with it at t = 0), not from a restart or a sweep's tensioned state."""
     run = Run(
-        case=case, problem=problem, folder=Path(folder), parameter=parameter,
-        unit=problem.setup.units[parameter], key_states=key_states, evaluator=evaluator,
-        stream=stream, warnings=warnings, fresh=fresh,
-    )  # fmt: skip
+        case=case,
+        problem=problem,
+        folder=Path(folder),
+        parameter=parameter,
+        unit=problem.setup.units[parameter],
+        key_states=key_states,
+        evaluator=evaluator,
+        stream=stream,
+        warnings=warnings,
+        fresh=fresh,
+    )
     recorders: list[Recorder] = []
     for output in registered_outputs():
         made = output.make(run)
@@ -105,18 +120,32 @@ class Recording:
     """
 
     def __init__(
-        self, case: Case, kind: SetupKind, problem: StrandProblem, programme: LoadProgramme,
-        result: RunResult, stream, *, keep: Callable[[RunStep], bool] | None = None,
+        self,
+        case: Case,
+        kind: SetupKind,
+        problem: StrandProblem,
+        programme: LoadProgramme,
+        result: RunResult,
+        stream,
+        *,
+        keep: Callable[[RunStep], bool] | None = None,
         fresh: bool = True,
-    ):  # fmt: skip
+    ):
         self.problem, self.programme, self.result, self.keep = problem, programme, result, keep
         self.case, self.kind, self.stream = case, kind, stream
         self.evaluator = CellEvaluator(problem.model)
         self.key_states = KeyStates()
         self.recorders = case_recorders(
-            case, problem, result.folder, programme.cycle_parameter, self.key_states,
-            self.evaluator, stream, warnings=result.warnings, fresh=fresh,
-        )  # fmt: skip
+            case,
+            problem,
+            result.folder,
+            programme.cycle_parameter,
+            self.key_states,
+            self.evaluator,
+            stream,
+            warnings=result.warnings,
+            fresh=fresh,
+        )
         self.bending = next(r for r in self.recorders if isinstance(r, BendingTable))
         self.slip = next(r for r in self.recorders if isinstance(r, SlipTable))
         self.steps_table = next(r for r in self.recorders if isinstance(r, StepTable))
@@ -130,9 +159,12 @@ class Recording:
         result, problem = self.result, self.problem
         result.steps.append(step)
         ctx = StepContext(
-            step, problem, step.parameter == self.programme.cycle_parameter, position=position,
+            step,
+            problem,
+            step.parameter == self.programme.cycle_parameter,
+            position=position,
             _evaluate=lambda: cell_results(problem.model, problem.setup.direction, self.evaluator),
-        )  # fmt: skip
+        )
         for r in self.recorders:
             t_r = time.perf_counter()
             r.record(ctx)
@@ -152,11 +184,19 @@ class Recording:
         steps = self.result.steps
         number = steps[-1].number + 1 if steps else 1  # after any start row
         step = RunStep(
-            number, rec.stage, stage.parameter, value,
-            self.programme.time(position.stage, value), rec.iterations, rec.cuts, rec.seconds,
-            rec.residuals[-1] if rec.residuals else 0.0, setup.state(), rec.failed_iterations,
+            number,
+            rec.stage,
+            stage.parameter,
+            value,
+            self.programme.time(position.stage, value),
+            rec.iterations,
+            rec.cuts,
+            rec.seconds,
+            rec.residuals[-1] if rec.residuals else 0.0,
+            setup.state(),
+            rec.failed_iterations,
             rec.factorisations,
-        )  # fmt: skip
+        )
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
         self.progress.step(stage, value, rec.iterations, rec.cuts, extra)
@@ -182,8 +222,9 @@ class Recording:
     def seconds_of(self, *types: type) -> float:
         """Wall time (s) of the recorders of ``types`` over the run."""
         timings = self.result.output_timings
-        return sum(timings.get(type(r).__name__, 0.0) for r in self.recorders
-                   if isinstance(r, types))  # fmt: skip
+        return sum(
+            timings.get(type(r).__name__, 0.0) for r in self.recorders if isinstance(r, types)
+        )
 
     def close(self) -> None:
         for r in self.recorders:
@@ -235,9 +276,12 @@ def run_programme_with_outputs(
 
 
 def _take_programme(
-    problem: StrandProblem, programme: LoadProgramme, recording: Recording, start: Start | None,
+    problem: StrandProblem,
+    programme: LoadProgramme,
+    recording: Recording,
+    start: Start | None,
     stream,
-) -> None:  # fmt: skip
+) -> None:
     """Run the programme with ``recording``'s callback; a stop (Ctrl-C) or a failed step ends
     it at the last converged step, said on ``stream`` and in the result; the recorders close."""
     result = recording.result
@@ -247,9 +291,12 @@ def _take_programme(
         with Interrupt(stream) as interrupt:
             problem.solver.interrupt = interrupt
             run_programme(
-                problem, programme, recording.on_step, start.position if start else None,
+                problem,
+                programme,
+                recording.on_step,
+                start.position if start else None,
                 **step_control(recording.case),
-            )  # fmt: skip
+            )
     except RunInterrupted as stop:
         result.failure, result.interrupted = f"{stop} {_written(result)}", True
         print(f"strand: stopped: {result.failure}", file=stream, flush=True)
@@ -294,9 +341,13 @@ def run_fatigue_report(case: Case, result: RunResult, recording: float, stream, 
     t0 = time.perf_counter()
     try:
         report = fatigue_report(
-            result.folder, case.cable, case.load.tension, case.fatigue, case.load.direction,
+            result.folder,
+            case.cable,
+            case.load.tension,
+            case.fatigue,
+            case.load.direction,
             clamp=clamp,
-        )  # fmt: skip
+        )
     except ReportError as e:
         print(f"strand: no fatigue report: {e}", file=stream, flush=True)
         return None

@@ -108,9 +108,15 @@ class StepSettings(WithKinds):
     iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
 
-    UNITS: ClassVar[dict[str, str]] = {"tension": "N", "growth": "", "cuts": "",
-                                       "max_iterations": "", "tolerance": "N", "balance": "",
-                                       "error_tolerance": "m"}  # fmt: skip
+    UNITS: ClassVar[dict[str, str]] = {
+        "tension": "N",
+        "growth": "",
+        "cuts": "",
+        "max_iterations": "",
+        "tolerance": "N",
+        "balance": "",
+        "error_tolerance": "m",
+    }
 
 
 #: PETSc's line searches for Newton (``[steps] line_search``)
@@ -146,18 +152,33 @@ class FatigueSettings:
     breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
     spectrum: tuple[tuple[float, float], ...] = ()  # [[amplitude, cycles], ...]: run as the sweep
 
-    UNITS: ClassVar[dict[str, str]] = {"sn_A": "MPa", "sn_b": "", "sn_knee": "cycles",
-                                       "sn_A2": "MPa", "sn_b2": "", "surface_points": "",
-                                       "clamp_distance": "m", "end_zone": "m", "stuck_slip": "m",
-                                       "breaking_strength": "N"}  # fmt: skip
+    UNITS: ClassVar[dict[str, str]] = {
+        "sn_A": "MPa",
+        "sn_b": "",
+        "sn_knee": "cycles",
+        "sn_A2": "MPa",
+        "sn_b2": "",
+        "surface_points": "",
+        "clamp_distance": "m",
+        "end_zone": "m",
+        "stuck_slip": "m",
+        "breaking_strength": "N",
+    }
 
     def curve(self):
         """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
         from ..fatigue.sn import SN_CURVES, SNCurve
 
         if self.sn_curve == "custom":
-            return SNCurve("custom (case file)", self.sn_A, self.sn_b, self.sn_knee, self.sn_A2,
-                           self.sn_b2, "the case file")  # fmt: skip
+            return SNCurve(
+                "custom (case file)",
+                self.sn_A,
+                self.sn_b,
+                self.sn_knee,
+                self.sn_A2,
+                self.sn_b2,
+                "the case file",
+            )
         return SN_CURVES[self.sn_curve]
 
     def layers(self, cable: Cable) -> list[int]:
@@ -173,10 +194,9 @@ class FatigueSettings:
 
         mine, steel = self.layers(cable), SN_CURVES.get(self.steel_sn_curve)
         return [
-            self.curve() if i in mine
-            else steel if wire_material(lay.wire.E) == "steel" else None
+            self.curve() if i in mine else steel if wire_material(lay.wire.E) == "steel" else None
             for i, lay in enumerate(cable.layers)
-        ]  # fmt: skip
+        ]
 
     def end_zone_length(self, cable: Cable) -> float:
         """The clamp zone's length at each end (m): ``end_zone``, or how far the end sections'

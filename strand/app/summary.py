@@ -126,10 +126,12 @@ def reaction_lines(case: Case, result: RunResult) -> list[str]:
 def layer_stresses(cable, cells, length: float) -> Array:
     """Mean axial stress N/A (Pa) of each layer's wires over the middle half of the strand."""
     middle = np.abs(cells.z - length / 2) < length / 4
-    return np.array([
-        cells.axial[middle & (cells.layer == i)].mean() / lay.wire.area
-        for i, lay in enumerate(cable.layers)
-    ])  # fmt: skip
+    return np.array(
+        [
+            cells.axial[middle & (cells.layer == i)].mean() / lay.wire.area
+            for i, lay in enumerate(cable.layers)
+        ]
+    )
 
 
 def wire_stress_line(cable, cells, length: float) -> str:

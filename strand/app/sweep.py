@@ -59,8 +59,11 @@ def run_sweep(
         top = on_root(lambda: _sweep_folder(folder, overwrite, case))  # once the strand is built
         folders = {key: results_folder(case, top / key, overwrite) for key in keys}
         tension = LoadProgramme(programme.stages[:1], parameter)
-        print(f"--- sweep: tension, then {parameter} amplitudes {list(case.load.sweep)} ---",
-              file=stream, flush=True)  # fmt: skip
+        print(
+            f"--- sweep: tension, then {parameter} amplitudes {list(case.load.sweep)} ---",
+            file=stream,
+            flush=True,
+        )
         tensioned = run_programme_with_outputs(
             case, problem, tension, folders["tension"], stream, keep=lambda s: True, kind=kind
         )
@@ -76,7 +79,7 @@ def run_sweep(
             results.append(
                 run_programme_with_outputs(
                     member, problem, member_programme, folders[name], stream, start, kind=kind
-                )  # fmt: skip
+                )
             )
             if results[-1].interrupted:
                 break
@@ -106,8 +109,9 @@ def _check_sweep_folder(folder: Path, overwrite: bool) -> list[Path]:
     marker = folder / "sweep.txt"  # written first
     others = [p for p in folder.iterdir() if not p.name.startswith(".") and p.is_file()]
     if others and not marker.exists():
-        raise FolderError(f"{folder}: holds files that are not a strand sweep's; give another "
-                          "folder")  # fmt: skip
+        raise FolderError(
+            f"{folder}: holds files that are not a strand sweep's; give another folder"
+        )
     if marker.exists() and not overwrite:
         raise FolderError(
             f"{folder}: holds an earlier sweep; give another folder (--out) or replace it "
@@ -149,16 +153,23 @@ def sweep_table(case: Case, kind: SetupKind, unit: str, results: list[RunResult]
         amp = max((abs(s.load) for s in cycle), default=0.0)
         peak = r.peak_step
         zero = r.unloaded_steps
-        rows.append([
-            f"{amp:g}", str(len(cycle)), str(sum(s.iterations for s in cycle)),
-            str(sum(s.cuts for s in cycle)), f"{r.seconds:.1f}",
-            f"{getattr(peak.state, measure):.12g}" if peak else "nan",
-            f"{getattr(zero[0].state, measure):.12g}" if zero else "nan",
-            "interrupted" if r.interrupted else "failed" if r.failure else "done",
-            *(f"{f.get(name, np.nan):.6g}" for name in names),
-        ])  # fmt: skip
-    text = [f"sweep of {parameter} from one tensioned state ({case.load.tension / 1e3:g} kN):",
-            "  " + "  ".join(head)]  # fmt: skip
+        rows.append(
+            [
+                f"{amp:g}",
+                str(len(cycle)),
+                str(sum(s.iterations for s in cycle)),
+                str(sum(s.cuts for s in cycle)),
+                f"{r.seconds:.1f}",
+                f"{getattr(peak.state, measure):.12g}" if peak else "nan",
+                f"{getattr(zero[0].state, measure):.12g}" if zero else "nan",
+                "interrupted" if r.interrupted else "failed" if r.failure else "done",
+                *(f"{f.get(name, np.nan):.6g}" for name in names),
+            ]
+        )
+    text = [
+        f"sweep of {parameter} from one tensioned state ({case.load.tension / 1e3:g} kN):",
+        "  " + "  ".join(head),
+    ]
     text += ["  " + "  ".join(row) for row in rows]
     csv_text = "\n".join(",".join(r) for r in [head, *rows]) + "\n"
     return SweepTable("\n".join(text) + "\n", csv_text)

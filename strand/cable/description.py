@@ -104,13 +104,20 @@ class Cable:
 
 #: the fields of the core's table and of a layer's
 CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", "yield_stress"})
-LAYER_KEYS = frozenset({"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction",
-                        "yield_stress"})  # fmt: skip
+LAYER_KEYS = frozenset(
+    {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
+)
 
 
 #: the unit of each number of a core's or a layer's table, as error messages give it
-UNITS = {"diameter": "m", "E": "Pa", "nu": "", "yield_stress": "Pa", "lay_angle": "°",
-         "friction": ""}  # fmt: skip
+UNITS = {
+    "diameter": "m",
+    "E": "Pa",
+    "nu": "",
+    "yield_stress": "Pa",
+    "lay_angle": "°",
+    "friction": "",
+}
 
 
 def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, closed_low=False):

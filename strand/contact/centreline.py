@@ -48,8 +48,10 @@ def _controls(y, tangents, length):
     """Control points of one segment from y (…, 12) = (x₀, θ₀, x₁, θ₁); also the rotated unit
     tangents and the rotation coefficients (for the gradient)."""
     coef = [_rotation_coefficients(y[..., 3:6]), _rotation_coefficients(y[..., 9:12])]
-    t = [_rotate(y[..., 3:6], coef[0], tangents[..., 0, :]),
-         _rotate(y[..., 9:12], coef[1], tangents[..., 1, :])]  # fmt: skip
+    t = [
+        _rotate(y[..., 3:6], coef[0], tangents[..., 0, :]),
+        _rotate(y[..., 9:12], coef[1], tangents[..., 1, :]),
+    ]
     L = length[..., None]
     control = np.stack([y[..., 0:3], L * t[0], y[..., 6:9], L * t[1]], -2)
     return control, t, coef
@@ -94,9 +96,11 @@ def _side_gradient(h, length, n, t, coef, y, sign):
         parts.append(sign * h[..., 2 * node, None] * n)
         v = _cross(t[node], n)  # δ(L t) = L (T δθ) × t  ⇒  n·δ(L t) = L δθ·Tᵀ(t × n)
         parts.append(
-            sign * h[..., 2 * node + 1, None] * L
+            sign
+            * h[..., 2 * node + 1, None]
+            * L
             * _tangent_map_transpose(y[..., 6 * node + 3 : 6 * node + 6], coef[node], v)
-        )  # fmt: skip
+        )
     return np.concatenate(parts, -1)
 
 

@@ -177,9 +177,13 @@ class ContactGroup(PairGroup):
                     axis=1,
                 )
                 self._S = centreline_slip_operator(
-                    n, t, self.r_a + self.r_b, tangent_map(theta_a), tangent_map(theta_b),
+                    n,
+                    t,
+                    self.r_a + self.r_b,
+                    tangent_map(theta_a),
+                    tangent_map(theta_b),
                     self.line,
-                )  # fmt: skip
+                )
         return self._S
 
     def _kinematics(self, W: Array, jacobian: bool) -> PairKinematics:

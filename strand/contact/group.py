@@ -135,9 +135,12 @@ class PairGroup:
         self._friction: tuple[Array, Array] | None = None  # (Δg_T, K_T) of the last evaluation
         self.history = FrictionHistory.zeros(n_pairs)
         self.state = ContactState(
-            np.zeros(n_pairs), np.zeros(n_pairs), np.zeros((n_pairs, 3)), n0.copy(),
+            np.zeros(n_pairs),
+            np.zeros(n_pairs),
+            np.zeros((n_pairs, 3)),
+            n0.copy(),
             np.zeros(n_pairs, dtype=bool),
-        )  # fmt: skip
+        )
 
     def __len__(self) -> int:
         return len(self.stencils)
@@ -165,9 +168,16 @@ class PairGroup:
         if self.friction:
             S, dq = kin.slip()
             ft = self.friction_law.terms(
-                S, dq, p, dp_dg[:, None] * G, self._p_old, self._t_old, self._n_old,
-                normal=self.normal_law, jacobian=jacobian,
-            )  # fmt: skip
+                S,
+                dq,
+                p,
+                dp_dg[:, None] * G,
+                self._p_old,
+                self._t_old,
+                self._n_old,
+                normal=self.normal_law,
+                jacobian=jacobian,
+            )
             m = S.shape[2]
             f[:, :m] += ft.residual
             if jacobian:
@@ -206,16 +216,38 @@ class PairGroup:
 
     # -- checkpoints -------------------------------------------------------------------------------
     #: the per-pair arrays of ``history_arrays``, in order
-    HISTORY = ("t_old", "n_old", "p_old", "slip", "sliding", "work", "gap", "force", "traction",
-               "normal", "slipping")  # fmt: skip
+    HISTORY = (
+        "t_old",
+        "n_old",
+        "p_old",
+        "slip",
+        "sliding",
+        "work",
+        "gap",
+        "force",
+        "traction",
+        "normal",
+        "slipping",
+    )
 
     def history_arrays(self) -> dict[str, Array]:
         """Everything the next step starts from, per pair (first axis: the group's pairs): the
         committed traction, normal and normal force, the friction history, the last state, and
         what the kinematics keep beyond the unknowns (``_kinematics_history``)."""
         s, h = self.state, self.history
-        values = (self._t_old, self._n_old, self._p_old, h.slip, h.sliding, h.work, s.gap,
-                  s.force, s.traction, s.normal, s.slipping)  # fmt: skip
+        values = (
+            self._t_old,
+            self._n_old,
+            self._p_old,
+            h.slip,
+            h.sliding,
+            h.work,
+            s.gap,
+            s.force,
+            s.traction,
+            s.normal,
+            s.slipping,
+        )
         out = {k: np.array(v, copy=True) for k, v in zip(self.HISTORY, values, strict=True)}
         return out | {k: np.array(v, copy=True) for k, v in self._kinematics_history().items()}
 

@@ -420,5 +420,6 @@ def hertz_mindlin(
         law = HertzPointLaw(point_coefficient(r_a, r_b, angle, E_a, nu_a, E_b, nu_b))
     if mu is None:
         return law, None
-    return law, Mindlin(np.broadcast_to(np.asarray(mu, float), (P,)).copy(),
-                        mindlin_ratio(E_a, nu_a, E_b, nu_b))  # fmt: skip
+    return law, Mindlin(
+        np.broadcast_to(np.asarray(mu, float), (P,)).copy(), mindlin_ratio(E_a, nu_a, E_b, nu_b)
+    )

@@ -170,8 +170,16 @@ def node_pairs(
     if np.any(a == b):
         raise ValueError("a pair joins a node to itself")
     table = np.column_stack([a, b, nodes.neighbours[a], nodes.neighbours[b]]).astype(np.int32)
-    return _pairs_of(table, nodes.positions[table], radius_a, radius_b, line, initial_gap,
-                     tributary, np.arange(len(a)))  # fmt: skip
+    return _pairs_of(
+        table,
+        nodes.positions[table],
+        radius_a,
+        radius_b,
+        line,
+        initial_gap,
+        tributary,
+        np.arange(len(a)),
+    )
 
 
 def _pairs_of(table, x, radius_a, radius_b, line, initial_gap, tributary, index) -> NodePairs:
@@ -206,8 +214,17 @@ def _pairs_of(table, x, radius_a, radius_b, line, initial_gap, tributary, index)
     trib = _per_pair(tributary, P, "tributary") if line else np.zeros(P)
     if line and np.any(trib <= 0):
         raise ValueError("line pairs need positive tributary lengths (m)")
-    return NodePairs(table.astype(np.int32), x, bool(line), r_a, r_b, normal, gap, trib,
-                     np.asarray(index, dtype=np.intp))  # fmt: skip
+    return NodePairs(
+        table.astype(np.int32),
+        x,
+        bool(line),
+        r_a,
+        r_b,
+        normal,
+        gap,
+        trib,
+        np.asarray(index, dtype=np.intp),
+    )
 
 
 def closest_on_segments(p: Array, s0: Array, s1: Array) -> tuple[Array, Array]:
@@ -285,9 +302,16 @@ def candidate_pairs(
 
 
 def candidate_stencils(
-    points, cells, beam_a, beam_b, radius_a: float, radius_b: float, reach: float, *,
+    points,
+    cells,
+    beam_a,
+    beam_b,
+    radius_a: float,
+    radius_b: float,
+    reach: float,
+    *,
     line: bool = False,
-) -> npt.NDArray[np.int64]:  # fmt: skip
+) -> npt.NDArray[np.int64]:
     """``candidate_pairs`` on a mesh's input arrays, before it is built or distributed: the
     pairs' nodes as rows (P, 6) of ``points`` (N, 3) (m), in the order of ``ROLES`` (a, b and
     their neighbours along ``cells`` (E, 2)), between the beams whose nodes are the rows
@@ -395,6 +419,14 @@ def hertz_laws(
     Mindlin's initial tangential stiffness with Coulomb coefficients ``mu`` (None: frictionless).
     Material values may be one for all or one per pair (``laws.hertz_mindlin``)."""
     return hertz_mindlin(
-        pairs.line, pairs.radius_a, pairs.radius_b, pairs.crossing_angle, pairs.tributary,
-        E_a=E_a, nu_a=nu_a, E_b=E_b, nu_b=nu_b, mu=mu,
-    )  # fmt: skip
+        pairs.line,
+        pairs.radius_a,
+        pairs.radius_b,
+        pairs.crossing_angle,
+        pairs.tributary,
+        E_a=E_a,
+        nu_a=nu_a,
+        E_b=E_b,
+        nu_b=nu_b,
+        mu=mu,
+    )

@@ -89,10 +89,25 @@ class SlidingGroup(PairGroup):
     #: initial penetration (m) that keeps touching pairs closed despite round-off
     TOUCH = 1e-15
 
-    def __init__(self, stencils, initial_positions, na: int, line: bool, start,
-                 normal_law: NormalLaw, *, friction_law: FrictionLaw | None, tangents,
-                 index=None, wire_end=None, radius_a=0.0, radius_b=0.0, start_parameters=None,
-                 initial_gap=None, slip: str = "surface"):  # fmt: skip
+    def __init__(
+        self,
+        stencils,
+        initial_positions,
+        na: int,
+        line: bool,
+        start,
+        normal_law: NormalLaw,
+        *,
+        friction_law: FrictionLaw | None,
+        tangents,
+        index=None,
+        wire_end=None,
+        radius_a=0.0,
+        radius_b=0.0,
+        start_parameters=None,
+        initial_gap=None,
+        slip: str = "surface",
+    ):
         self.slip = check_slip(slip)
         n_pairs, k = np.shape(stencils)
         # the initial normal is known once the closest points are: set below
@@ -111,9 +126,10 @@ class SlidingGroup(PairGroup):
             self.segment_length[:, na:-1] = np.linalg.norm(np.diff(self.X[:, na:], axis=1), axis=2)
         self.segment = np.asarray(start, dtype=np.intp).copy()  # current (s_a, s_b)
         self.parameter = (
-            np.zeros((n_pairs, 2)) if start_parameters is None
+            np.zeros((n_pairs, 2))
+            if start_parameters is None
             else np.asarray(start_parameters, float).copy()
-        )  # fmt: skip
+        )
         self.g0 = np.zeros(n_pairs)  # so that the initial distances come out whole
         distance, _, n_initial, _ = self._kinematics_of(
             self.X, np.zeros_like(self.X), hessian=False
@@ -156,9 +172,14 @@ class SlidingGroup(PairGroup):
         """Closest points of the pairs ``rows`` on their current segments (Newton to tolerance)."""
         _, y, data = self._active(x, rot, rows)
         xi, eta = self._kernel(
-            y, data, self.parameter[rows, 0], self.parameter[rows, 1], True,
-            self.PROJECTION_ITERATIONS, self.PROJECTION_TOLERANCE,
-        )[3:]  # fmt: skip
+            y,
+            data,
+            self.parameter[rows, 0],
+            self.parameter[rows, 1],
+            True,
+            self.PROJECTION_ITERATIONS,
+            self.PROJECTION_TOLERANCE,
+        )[3:]
         self.parameter[rows, 0], self.parameter[rows, 1] = xi, eta
 
     def _search(self, x, rot) -> None:
@@ -317,9 +338,14 @@ class SlidingGroup(PairGroup):
         self._kinematics_of(x, rot, hessian=False)
         _, y, data = self._active(x, rot)
         S = centreline_slip_operator(
-            line_kernel if self.line else crossing_kernel, y, data, self.parameter[:, 0],
-            self.parameter[:, 1], self._free, self.line,
-        )  # fmt: skip
+            line_kernel if self.line else crossing_kernel,
+            y,
+            data,
+            self.parameter[:, 0],
+            self.parameter[:, 1],
+            self._free,
+            self.line,
+        )
         cols = (6 * self._nodes[:, :, None] + np.arange(6)).reshape(n_pairs, -1)[:, : y.shape[1]]
         out = np.zeros((n_pairs, 3, 6 * k))
         out[np.arange(n_pairs)[:, None], :, cols] = S.transpose(0, 2, 1)

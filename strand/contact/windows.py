@@ -192,12 +192,23 @@ def sliding_group(
         start_parameters[:, 0] = weights
     tangents = chains.tangents() if tangents is None else np.asarray(tangents, dtype=float)
     stencils = nodes if blocks is None else np.asarray(blocks)[nodes]
-    return SlidingGroup(stencils, chains.positions[nodes], na, pairs.line,
-                        np.column_stack([start_a, start_b]), normal_law, friction_law=friction_law,
-                        index=pairs.index, wire_end=windows.ends,
-                        radius_a=pairs.radius_a, radius_b=pairs.radius_b,
-                        start_parameters=start_parameters, tangents=tangents[nodes],
-                        initial_gap=pairs.initial_gap, slip=slip)  # fmt: skip
+    return SlidingGroup(
+        stencils,
+        chains.positions[nodes],
+        na,
+        pairs.line,
+        np.column_stack([start_a, start_b]),
+        normal_law,
+        friction_law=friction_law,
+        index=pairs.index,
+        wire_end=windows.ends,
+        radius_a=pairs.radius_a,
+        radius_b=pairs.radius_b,
+        start_parameters=start_parameters,
+        tangents=tangents[nodes],
+        initial_gap=pairs.initial_gap,
+        slip=slip,
+    )
 
 
 def _law_rows(law, rows: npt.NDArray[np.intp], n: int):

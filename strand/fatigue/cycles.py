@@ -49,8 +49,9 @@ def _cycles(rows: list) -> Cycles:
         empty = np.zeros(0)
         return Cycles(empty, empty, empty, empty.astype(np.intp), empty.astype(np.intp))
     r, m, c, i, j = (np.array(v) for v in zip(*rows, strict=True))
-    return Cycles(r.astype(float), m.astype(float), c.astype(float), i.astype(np.intp),
-                  j.astype(np.intp))  # fmt: skip
+    return Cycles(
+        r.astype(float), m.astype(float), c.astype(float), i.astype(np.intp), j.astype(np.intp)
+    )
 
 
 def rainflow_cycles(series) -> Cycles:

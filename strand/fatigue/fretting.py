@@ -72,11 +72,14 @@ def crossing_cycles(
         window = force[cycle_steps(i, j, len(force))]
         rows.append(
             (
-                _half_change(sliding, i, j), _half_change(slip, i, j),
-                _half_change(traction, i, j), window.max(axis=0), window.mean(axis=0),
+                _half_change(sliding, i, j),
+                _half_change(slip, i, j),
+                _half_change(traction, i, j),
+                window.max(axis=0),
+                window.mean(axis=0),
                 2 * c * _work(work, i, j),
             )
-        )  # fmt: skip
+        )
     n = force.shape[1]
     stacked = [np.array([r[k] for r in rows]).reshape(len(rows), n) for k in range(6)]
     return CrossingCycles(*stacked)

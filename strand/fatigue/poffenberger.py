@@ -49,20 +49,32 @@ def span_error(k: float, half_span: float, distance: float) -> float:
     return float(k**2 * w / (np.exp(-k * x) - 1 + k * x) / curvature - 1)
 
 
-def span_check(cable: Cable, tension: float, span: float, distance: float,
-               tolerance: float = SPAN_TOLERANCE) -> SpanCheck:  # fmt: skip
+def span_check(
+    cable: Cable, tension: float, span: float, distance: float, tolerance: float = SPAN_TOLERANCE
+) -> SpanCheck:
     """P–S on a clamped ``span`` (m) under ``tension`` (N), read at ``distance`` (m)."""
     ei_max = StickSlipLaw(cable, tension).ei_max
     decay = float(np.sqrt(ei_max / tension))
     a = span / 2
     if distance >= a:
-        return SpanCheck(False, np.nan, decay, f"its measuring point x = {1e3 * distance:.0f} mm "
-                         f"lies beyond the midspan load ({1e3 * a:.0f} mm from the clamp)")  # fmt: skip
+        return SpanCheck(
+            False,
+            np.nan,
+            decay,
+            f"its measuring point x = {1e3 * distance:.0f} mm "
+            f"lies beyond the midspan load ({1e3 * a:.0f} mm from the clamp)",
+        )
     error = span_error(1 / decay, a, distance)
     if abs(error) > tolerance:
-        return SpanCheck(False, error, decay, (
-            f"the span {span:.3g} m is too short for its long-span assumption: with EI_max the "
-            f"clamp's curvature decays over √(EI_max/T) = {1e3 * decay:.0f} mm, and the finite "
-            f"span changes the clamp curvature read at x = {1e3 * distance:.0f} mm by "
-            f"{100 * error:+.0f} % (more than {100 * tolerance:.0f} %)"))  # fmt: skip
+        return SpanCheck(
+            False,
+            error,
+            decay,
+            (
+                f"the span {span:.3g} m is too short for its long-span assumption: with EI_max the "
+                f"clamp's curvature decays over √(EI_max/T) = {1e3 * decay:.0f} mm, and the finite "
+                f"span changes the clamp curvature read at x = {1e3 * distance:.0f} mm by "
+                f"{100 * error:+.0f} % (more than {100 * tolerance:.0f} %)"
+            ),
+        )
     return SpanCheck(True, error, decay)

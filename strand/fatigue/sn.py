@@ -50,13 +50,29 @@ class SNCurve:
     material: str = ""
 
     @classmethod
-    def from_range(cls, name: str, range_at_knee: float, knee: float, k1: float, k2: float,
-                   source: str = "", material: str = "") -> SNCurve:  # fmt: skip
+    def from_range(
+        cls,
+        name: str,
+        range_at_knee: float,
+        knee: float,
+        k1: float,
+        k2: float,
+        source: str = "",
+        material: str = "",
+    ) -> SNCurve:
         """The curve Δσ = Δσ* (N/N*)^(−1/k₁) for N ≤ N*, (N/N*)^(−1/k₂) beyond, of a stress
         range ``range_at_knee`` Δσ* (MPa) at ``knee`` N* cycles (Eurocode's form)."""
         amplitude = range_at_knee / 2
-        return cls(name, amplitude * knee ** (1 / k1), -1 / k1, knee,
-                   amplitude * knee ** (1 / k2), -1 / k2, source, material)  # fmt: skip
+        return cls(
+            name,
+            amplitude * knee ** (1 / k1),
+            -1 / k1,
+            knee,
+            amplitude * knee ** (1 / k2),
+            -1 / k2,
+            source,
+            material,
+        )
 
     def __post_init__(self):
         if not (self.A > 0 and self.b < 0 and self.knee > 0):
@@ -80,22 +96,44 @@ _EN1992 = "EN 1992-1-1:2004, Table 6.4N"
 
 SN_CURVES = {
     "cigre-sbl-multilayer": SNCurve(
-        "CIGRE Safe Border Line, conductors of two or more aluminium layers", 450.0, -0.2, 2e7,
-        263.0, -0.17, _CIGRE, "aluminium",
+        "CIGRE Safe Border Line, conductors of two or more aluminium layers",
+        450.0,
+        -0.2,
+        2e7,
+        263.0,
+        -0.17,
+        _CIGRE,
+        "aluminium",
     ),
     "cigre-sbl-single-layer": SNCurve(
-        "CIGRE Safe Border Line, conductors of one aluminium layer", 730.0, -0.2, 2e7, 430.0,
-        -0.17, _CIGRE, "aluminium",
+        "CIGRE Safe Border Line, conductors of one aluminium layer",
+        730.0,
+        -0.2,
+        2e7,
+        430.0,
+        -0.17,
+        _CIGRE,
+        "aluminium",
     ),
     "en1992-prestressing-steel": SNCurve.from_range(
-        "prestressing steel wire and strand (Δσ_Rsk = 185 MPa at 1e6, k1 = 5, k2 = 9)", 185.0,
-        1e6, 5.0, 9.0, f"{_EN1992}, pre-tensioning and single strands in plastic ducts", "steel",
+        "prestressing steel wire and strand (Δσ_Rsk = 185 MPa at 1e6, k1 = 5, k2 = 9)",
+        185.0,
+        1e6,
+        5.0,
+        9.0,
+        f"{_EN1992}, pre-tensioning and single strands in plastic ducts",
+        "steel",
     ),
     "en1992-steel-duct": SNCurve.from_range(
         "prestressing steel fretting on a steel duct (Δσ_Rsk = 120 MPa at 1e6, k1 = 5, k2 = 7)",
-        120.0, 1e6, 5.0, 7.0, f"{_EN1992}, curved tendons in steel ducts", "steel",
+        120.0,
+        1e6,
+        5.0,
+        7.0,
+        f"{_EN1992}, curved tendons in steel ducts",
+        "steel",
     ),
-}  # fmt: skip
+}
 
 
 def miner_damage(ranges, counts, curve: SNCurve) -> float:

@@ -77,8 +77,9 @@ def reduce_history(series, bins: int = 3) -> Spectrum:
     count = np.bincount(k, weights=c.count, minlength=bins)
     weighted = np.bincount(k, weights=c.count * c.mean, minlength=bins)
     full = count > 0
-    return Spectrum(edges[full], count[full], weighted[full] / count[full], width, points,
-                    float(c.count.sum()))  # fmt: skip
+    return Spectrum(
+        edges[full], count[full], weighted[full] / count[full], width, points, float(c.count.sum())
+    )
 
 
 def spectrum_classes(value) -> tuple[tuple[float, float], ...]:
@@ -87,20 +88,23 @@ def spectrum_classes(value) -> tuple[tuple[float, float], ...]:
     pairs = []
     for entry in value if isinstance(value, list | tuple) else [value]:
         if (
-            not isinstance(entry, list | tuple) or len(entry) != 2
+            not isinstance(entry, list | tuple)
+            or len(entry) != 2
             or not all(isinstance(v, int | float) and not isinstance(v, bool) for v in entry)
             or not all(np.isfinite(entry))
-        ):  # fmt: skip
+        ):
             raise ValueError(
                 f"expected [[amplitude, cycles], ...], pairs of numbers; got {entry!r}"
             )
         amplitude, count = float(entry[0]), float(entry[1])
         if not amplitude > 0:
-            raise ValueError(f"amplitude {entry[0]!r}: expected a positive amplitude (the cycle "
-                             "gives the signs)")  # fmt: skip
+            raise ValueError(
+                f"amplitude {entry[0]!r}: expected a positive amplitude (the cycle gives the signs)"
+            )
         if not count > 0:
-            raise ValueError(f"{entry[1]!r} cycles at amplitude {entry[0]!r}: expected a positive "
-                             "count")  # fmt: skip
+            raise ValueError(
+                f"{entry[1]!r} cycles at amplitude {entry[0]!r}: expected a positive count"
+            )
         pairs.append((amplitude, count))
     amplitudes = [a for a, _ in pairs]
     twice = sorted({a for a in amplitudes if amplitudes.count(a) > 1})

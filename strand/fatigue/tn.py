@@ -21,8 +21,14 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["DNV_SPIRAL_ROPE", "API_SPIRAL_STRAND", "TENSION_CYCLE_SHARE", "dnv_spiral_rope_life",
-           "api_spiral_strand_life", "tension_damage"]  # fmt: skip
+__all__ = [
+    "DNV_SPIRAL_ROPE",
+    "API_SPIRAL_STRAND",
+    "TENSION_CYCLE_SHARE",
+    "dnv_spiral_rope_life",
+    "api_spiral_strand_life",
+    "tension_damage",
+]
 
 Array = npt.NDArray[np.float64]
 

@@ -90,13 +90,20 @@ def capture(
     if ramp is not None and ramp.previous is not None:
         dw = model.gather_nodes(ramp.previous[1].reshape(-1, 6))
     return Checkpoint(
-        number, time, {p: setup.get(p) for p in setup.parameters}, position.stage,
+        number,
+        time,
+        {p: setup.get(p) for p in setup.parameters},
+        position.stage,
         None if ramp is None else ramp.step,
         None if ramp is None or ramp.previous is None else ramp.previous[0],
-        model.node_values(), dw, model.gather_pairs([g.history_arrays() for g in model.contact]),
+        model.node_values(),
+        dw,
+        model.gather_pairs([g.history_arrays() for g in model.contact]),
         model.same_layer_history(),
-        model.gather_nodes(problem.solver.unconstrained_residual()) if residual is None else residual,
-    )  # fmt: skip
+        model.gather_nodes(problem.solver.unconstrained_residual())
+        if residual is None
+        else residual,
+    )
 
 
 def restore(problem, checkpoint: Checkpoint) -> Position:
@@ -177,10 +184,15 @@ def read_checkpoint(path: str | Path) -> Checkpoint:
             return None if np.isnan(v) else v
 
         return Checkpoint(
-            int(f.attrs["number"]), float(f.attrs["time"]),
-            {k: float(v) for k, v in f["loads"].attrs.items()}, int(f.attrs["stage"]),
-            optional("step"), optional("load_increment"), f["w"][()],
-            f["dw"][()] if "dw" in f else None, {k: v[()] for k, v in f["pairs"].items()},
+            int(f.attrs["number"]),
+            float(f.attrs["time"]),
+            {k: float(v) for k, v in f["loads"].attrs.items()},
+            int(f.attrs["stage"]),
+            optional("step"),
+            optional("load_increment"),
+            f["w"][()],
+            f["dw"][()] if "dw" in f else None,
+            {k: v[()] for k, v in f["pairs"].items()},
             {k: v[()] for k, v in f["same_layer"].items()} if "same_layer" in f else {},
             f["residual"][()] if "residual" in f else None,
-        )  # fmt: skip
+        )

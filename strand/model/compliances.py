@@ -83,8 +83,9 @@ def register_compliance(name: str, build: Build, *, uses: tuple[str, ...] = ()) 
     the pairs ``wires`` (``Wires``); ``uses``: which of ``PENALTY_SETTINGS`` it reads."""
     unknown = set(uses) - set(PENALTY_SETTINGS)
     if unknown:
-        raise ValueError(f"compliance {name!r} uses {sorted(unknown)}: not among "
-                         f"{', '.join(PENALTY_SETTINGS)}")  # fmt: skip
+        raise ValueError(
+            f"compliance {name!r} uses {sorted(unknown)}: not among {', '.join(PENALTY_SETTINGS)}"
+        )
     _COMPLIANCES[name] = Compliance(name, build, tuple(uses))
     return _COMPLIANCES[name]
 
@@ -119,9 +120,17 @@ def _hertz(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
     length, and Mindlin's initial stick stiffness (``contact.laws.hertz_mindlin``)."""
     w = wires
     return hertz_mindlin(
-        w.line, w.radius_a, w.radius_b, w.angle, w.tributary,
-        E_a=w.E_a, nu_a=w.nu_a, E_b=w.E_b, nu_b=w.nu_b, mu=w.mu,
-    )  # fmt: skip
+        w.line,
+        w.radius_a,
+        w.radius_b,
+        w.angle,
+        w.tributary,
+        E_a=w.E_a,
+        nu_a=w.nu_a,
+        E_b=w.E_b,
+        nu_b=w.nu_b,
+        mu=w.mu,
+    )
 
 
 register_compliance("penalty", _penalty, uses=PENALTY_SETTINGS)

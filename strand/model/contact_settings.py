@@ -86,8 +86,12 @@ class ContactSettings:
     slip: str = "surface"
 
     #: the SI unit of every number (error messages give it)
-    UNITS: ClassVar[dict[str, str]] = {"k_point": "N/m", "k_line": "N/m²", "g_lim": "m",
-                                       "reach": "m"}  # fmt: skip
+    UNITS: ClassVar[dict[str, str]] = {
+        "k_point": "N/m",
+        "k_line": "N/m²",
+        "g_lim": "m",
+        "reach": "m",
+    }
 
     def __post_init__(self):
         try:
@@ -116,8 +120,9 @@ class ContactSettings:
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):
-                raise CableError(f"contact {name} = {value!r} {self.UNITS[name]}: must be a "
-                                 "positive number")  # fmt: skip
+                raise CableError(
+                    f"contact {name} = {value!r} {self.UNITS[name]}: must be a positive number"
+                )
         uses = compliance_named(self.compliance).uses
         defaults = {f.name: f.default for f in fields(self)}
         given = [n for n in PENALTY_SETTINGS if n not in uses and getattr(self, n) != defaults[n]]

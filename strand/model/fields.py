@@ -47,9 +47,13 @@ class FieldWriter:
     """
 
     def __init__(
-        self, path: str | Path, beam: ReissnerBeam, cell_data=(), vtx: bool = True,
+        self,
+        path: str | Path,
+        beam: ReissnerBeam,
+        cell_data=(),
+        vtx: bool = True,
         loads: Sequence[str] = (),
-    ):  # fmt: skip
+    ):
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         w = beam.w
@@ -78,9 +82,12 @@ class FieldWriter:
         self._vtx = None
         if vtx:
             self._vtx = dolfinx.io.VTXWriter(
-                mesh.comm, self.path.with_suffix(".bp"), self.functions, engine="BP4",
+                mesh.comm,
+                self.path.with_suffix(".bp"),
+                self.functions,
+                engine="BP4",
                 mesh_policy=dolfinx.io.VTXMeshPolicy.reuse,
-            )  # fmt: skip
+            )
         self._comm = mesh.comm
         self.names: list[str] = []  # of the frames written
         self.load_names = list(loads)

@@ -93,12 +93,17 @@ def fibre_pressure(geometry: StrandGeometry, wire_force: npt.ArrayLike) -> Array
     forces ``wire_force`` (N, one per helical layer)."""
     layers = geometry.cable.layers[1:]
     T = np.asarray(wire_force, dtype=float)
-    return np.array([lay.wires * t * np.sin(lay.alpha) ** 2 / (lay.radius * np.cos(lay.alpha))
-                     for lay, t in zip(layers, T, strict=True)])  # fmt: skip
+    return np.array(
+        [
+            lay.wires * t * np.sin(lay.alpha) ** 2 / (lay.radius * np.cos(lay.alpha))
+            for lay, t in zip(layers, T, strict=True)
+        ]
+    )
 
 
-def layer_wire_forces(layer: npt.ArrayLike, z: npt.ArrayLike, axial: npt.ArrayLike,
-                      length: float) -> Array:  # fmt: skip
+def layer_wire_forces(
+    layer: npt.ArrayLike, z: npt.ArrayLike, axial: npt.ArrayLike, length: float
+) -> Array:
     """Mean axial force (N) of the cells of each helical layer 1, 2, … whose midpoint ``z``
     (m) lies in the middle half of the span ``length`` (``post.CellResults``' arrays)."""
     layer, z, axial = (np.asarray(v) for v in (layer, z, axial))
@@ -175,8 +180,12 @@ def layer_pressure(
     out = []
     for i, lay in enumerate(g.cable.layers[1:], start=1):
         below = radial[inside & (p.interface == i - 1)].sum() / window
-        record = {"layer": i, "wire_force": float(np.asarray(wire_force)[i - 1]),
-                  "fibre": float(fibre[i - 1]), "crossings_below": float(below)}  # fmt: skip
+        record = {
+            "layer": i,
+            "wire_force": float(np.asarray(wire_force)[i - 1]),
+            "fibre": float(fibre[i - 1]),
+            "crossings_below": float(below),
+        }
         if ring_terms is not None and lay.wires > 1:
             mine = s_inside & (s.layer == i)
             wires = np.flatnonzero(g.wire_layer == i)

@@ -218,11 +218,19 @@ class StrandModel:
         per_group = []
         for g in self.contact:
             s, h = g.state, g.history
-            per_group.append({
-                "gap": s.gap, "force": s.force, "traction": np.linalg.norm(s.traction, axis=1),
-                "work": h.work, "slipping": s.slipping.astype(float), "friction": s.traction,
-                "normal": s.normal, "slip": h.slip, "sliding": h.sliding,
-            })  # fmt: skip
+            per_group.append(
+                {
+                    "gap": s.gap,
+                    "force": s.force,
+                    "traction": np.linalg.norm(s.traction, axis=1),
+                    "work": h.work,
+                    "slipping": s.slipping.astype(float),
+                    "friction": s.traction,
+                    "normal": s.normal,
+                    "slip": h.slip,
+                    "sliding": h.sliding,
+                }
+            )
         shapes = {k: () for k in ("gap", "force", "traction", "work", "slipping")}
         out = self.gather_pairs(per_group, shapes | dict.fromkeys(PAIR_VECTORS, (3,)))
         return PairResults(**{**out, "slipping": out["slipping"] > 0.5})

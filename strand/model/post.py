@@ -133,9 +133,18 @@ def cell_results(
     tangent /= np.linalg.norm(tangent, axis=1)[:, None]
     moment = values[:, 4:7]
     return CellResults(
-        g.cell_wire, g.cell_layer, z0, phi, values[:, 0], values[:, 1:4], moment, tangent, r,
-        section_spin(w[:, 3:], g.cells, tangent), section_torque(moment, tangent),
-    )  # fmt: skip
+        g.cell_wire,
+        g.cell_layer,
+        z0,
+        phi,
+        values[:, 0],
+        values[:, 1:4],
+        moment,
+        tangent,
+        r,
+        section_spin(w[:, 3:], g.cells, tangent),
+        section_torque(moment, tangent),
+    )
 
 
 def section_resultants(model: StrandModel, cells: CellResults, z: float) -> tuple[Array, Array]:
@@ -189,9 +198,14 @@ def harmonic_fit(phi_deg: Array, values: Array) -> Array:
 
 
 def layer_fields(
-    layer: npt.ArrayLike, phi: Array, axial: Array, spin: Array, torque: Array,
-    curvature: float, plane_axial: Array,
-) -> LayerFields:  # fmt: skip
+    layer: npt.ArrayLike,
+    phi: Array,
+    axial: Array,
+    spin: Array,
+    torque: Array,
+    curvature: float,
+    plane_axial: Array,
+) -> LayerFields:
     """Per helical layer i = 1 … len(``plane_axial``), from its cells (``layer`` == i): the
     sin φ amplitude of the axial force change ``axial`` (N) over ``plane_axial[i − 1]`` × κ
     (K r, N m: the plane-section change is K r κ sin φ), the cos φ amplitude of the spin change
@@ -205,27 +219,37 @@ def layer_fields(
     for i in range(1, n + 1):
         mine = layer == i
         count[i - 1] = mine.sum()
-        fits[:, i - 1] = [harmonic_fit(phi[mine], values[mine])[k]
-                          for values, k in ((axial, 1), (spin, 2), (torque, 1))]  # fmt: skip
+        fits[:, i - 1] = [
+            harmonic_fit(phi[mine], values[mine])[k]
+            for values, k in ((axial, 1), (spin, 2), (torque, 1))
+        ]
     return LayerFields(
-        float(curvature), fits[0] / (np.asarray(plane_axial) * curvature),
-        fits[1] / curvature, fits[2] / curvature, count,
-    )  # fmt: skip
+        float(curvature),
+        fits[0] / (np.asarray(plane_axial) * curvature),
+        fits[1] / curvature,
+        fits[2] / curvature,
+        count,
+    )
 
 
 def zone_layer_fields(
-    state: CellResults, tensioned: CellResults, zone: tuple[float, float], curvature: float,
+    state: CellResults,
+    tensioned: CellResults,
+    zone: tuple[float, float],
+    curvature: float,
     plane_axial: Array,
-) -> LayerFields:  # fmt: skip
+) -> LayerFields:
     """``layer_fields`` of the cells whose initial midpoint lies in ``zone`` = (z_min, z_max)
     (m), from the changes of axial force, spin and torque between ``tensioned`` and ``state``,
     at ``state``'s φ."""
     inside = (state.z >= zone[0]) & (state.z <= zone[1])
     return layer_fields(
-        state.layer[inside], state.phi[inside],
+        state.layer[inside],
+        state.phi[inside],
         *((getattr(state, k) - getattr(tensioned, k))[inside] for k in ("axial", "spin", "torque")),
-        curvature, plane_axial,
-    )  # fmt: skip
+        curvature,
+        plane_axial,
+    )
 
 
 def fibre_model(cable: Cable, tension: float) -> dict:

@@ -84,9 +84,16 @@ class LoadProgramme:
 
 
 def cycle_stages(
-    parameter: str, amplitude: float, cycle, first_step: float, max_step: float, *, cuts: int,
-    growth: float, predictor: bool = True,
-) -> list[Stage]:  # fmt: skip
+    parameter: str,
+    amplitude: float,
+    cycle,
+    first_step: float,
+    max_step: float,
+    *,
+    cuts: int,
+    growth: float,
+    predictor: bool = True,
+) -> list[Stage]:
     """Legs ``leg 1, leg 2, …`` to the targets ``cycle`` × ``amplitude``; every leg starts with
     ``first_step`` (the direction may reverse) and uses the secant predictor (``predictor``)."""
     return [
@@ -99,7 +106,7 @@ def cycle_stages(
             max_step,
             growth,
             extrapolate=predictor,
-        )  # fmt: skip
+        )
         for i, c in enumerate(cycle)
     ]
 
@@ -135,10 +142,16 @@ def run_programme(
             continue
         solver = setup.driver(problem.solver, stage.parameter)  # a stand-in for a controlled load
         stepper = LoadStepper(
-            solver, stage.first_step, stage.min_step, max_step=stage.max_step,
-            growth=stage.growth, extrapolate=stage.extrapolate, controller=controller,
-            retry=retry, settles=stage.settles,
-        )  # fmt: skip
+            solver,
+            stage.first_step,
+            stage.min_step,
+            max_step=stage.max_step,
+            growth=stage.growth,
+            extrapolate=stage.extrapolate,
+            controller=controller,
+            retry=retry,
+            settles=stage.settles,
+        )
         if on_step is not None:
             stepper.on_step = lambda rec, stage=stage, index=index, stepper=stepper: on_step(
                 stage, rec, Position(index, stepper.state)

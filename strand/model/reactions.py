@@ -62,8 +62,16 @@ def end_reactions(model, strand_forces: Array) -> EndReactions:
     x = model.positions()
     f0, m0 = end_resultant(model.wire_ends(0), x, strand_forces)
     fL, mL = end_resultant(model.wire_ends(1), x, strand_forces)
-    return EndReactions(-float(f0[2]), float(fL[2]), float(m0[2]), float(mL[2]),
-                        float(m0[0]), float(m0[1]), float(mL[0]), float(mL[1]))  # fmt: skip
+    return EndReactions(
+        -float(f0[2]),
+        float(fL[2]),
+        float(m0[2]),
+        float(mL[2]),
+        float(m0[0]),
+        float(m0[1]),
+        float(mL[0]),
+        float(mL[1]),
+    )
 
 
 class ReactionGauge:

@@ -187,8 +187,19 @@ def same_layer_pairs(
             parts.append((a, b0, b1, xi, normal, gap, tributary, np.full(len(a), i, np.int32)))
     if not parts:
         empty, none = np.zeros(0), np.zeros(0, np.int64)
-        return SameLayerPairs(none, none, none, empty, np.zeros((0, 3)), empty, empty,
-                              np.zeros(0, np.int32), none, empty, stencil)  # fmt: skip
+        return SameLayerPairs(
+            none,
+            none,
+            none,
+            empty,
+            np.zeros((0, 3)),
+            empty,
+            empty,
+            np.zeros(0, np.int32),
+            none,
+            empty,
+            stencil,
+        )
     a, b0, b1, xi, normal, gap, tributary, layer = (
         np.concatenate(c) for c in zip(*parts, strict=True)
     )
@@ -212,10 +223,17 @@ def same_layer_laws(
     mu = np.array([layers[i].friction for i in pairs.layer[rows]])
     E, nu = np.array([w.E for w in wire]), np.array([w.nu for w in wire])
     chosen = Wires(
-        line=True, radius_a=radius, radius_b=radius, E_a=E, nu_a=nu, E_b=E, nu_b=nu,
-        mu=mu if settings.friction else None, tributary=pairs.tributary[rows],
+        line=True,
+        radius_a=radius,
+        radius_b=radius,
+        E_a=E,
+        nu_a=nu,
+        E_b=E,
+        nu_b=nu,
+        mu=mu if settings.friction else None,
+        tributary=pairs.tributary[rows],
         angle=np.zeros(len(rows)),
-    )  # fmt: skip
+    )
     law, friction = compliance_named(settings.compliance).build(chosen, settings)
     return radius, SmoothOnset(law), friction
 
@@ -241,19 +259,36 @@ def same_layer_groups(
         tangents = geometry.tangents()
         return [
             ContactGroup(
-                input_to_block[pairs.stencils[rows]], geometry.points[np.column_stack([c, a])],
-                True, radius, radius, -pairs.normal[rows], law, friction_law=friction, normal="director",
-                tangent0=np.stack([tangents[c], tangents[a]], axis=1), index=rows,
-                initial_gap=pairs.gap[rows], offset=pairs.offset[rows],
+                input_to_block[pairs.stencils[rows]],
+                geometry.points[np.column_stack([c, a])],
+                True,
+                radius,
+                radius,
+                -pairs.normal[rows],
+                law,
+                friction_law=friction,
+                normal="director",
+                tangent0=np.stack([tangents[c], tangents[a]], axis=1),
+                index=rows,
+                initial_gap=pairs.gap[rows],
+                offset=pairs.offset[rows],
             )
-        ]  # fmt: skip
+        ]
     return [
         SegmentGroup(
-            input_to_block[pairs.stencils[rows]], pairs.weight[rows], radius, radius,
-            pairs.normal[rows], law, friction_law=friction, initial_gap=pairs.gap[rows], index=rows,
-            normal="neighbour", initial_positions=geometry.points[pairs.stencils[rows]],
+            input_to_block[pairs.stencils[rows]],
+            pairs.weight[rows],
+            radius,
+            radius,
+            pairs.normal[rows],
+            law,
+            friction_law=friction,
+            initial_gap=pairs.gap[rows],
+            index=rows,
+            normal="neighbour",
+            initial_positions=geometry.points[pairs.stencils[rows]],
         )
-    ]  # fmt: skip
+    ]
 
 
 def facing_point_motion(geometry: StrandGeometry, pairs: SameLayerPairs, w: npt.ArrayLike) -> Array:

@@ -125,11 +125,17 @@ def pair_laws(
     E_a, nu_a = (np.array([getattr(w, key) for w in wires])[inner] for key in ("E", "nu"))
     E_b, nu_b = (np.array([getattr(w, key) for w in wires])[outer] for key in ("E", "nu"))
     chosen = Wires(
-        line=bool(np.all(pairs.kind[sel] == LINE)), radius_a=pairs.radius_a[sel],
-        radius_b=pairs.radius_b[sel], E_a=E_a, nu_a=nu_a, E_b=E_b, nu_b=nu_b,
-        mu=pairs.friction[sel] if settings.friction else None, tributary=pairs.tributary[sel],
+        line=bool(np.all(pairs.kind[sel] == LINE)),
+        radius_a=pairs.radius_a[sel],
+        radius_b=pairs.radius_b[sel],
+        E_a=E_a,
+        nu_a=nu_a,
+        E_b=E_b,
+        nu_b=nu_b,
+        mu=pairs.friction[sel] if settings.friction else None,
+        tributary=pairs.tributary[sel],
         angle=crossing_angle(tangents),
-    )  # fmt: skip
+    )
     return compliance_named(settings.compliance).build(chosen, settings)
 
 
@@ -194,9 +200,16 @@ def _same_layer_line_pairs(geometry: StrandGeometry, pairs: SameLayerPairs, rows
     )
     radius = np.array([geometry.cable.layers[i].wire.diameter / 2 for i in pairs.layer[rows]])
     return NodePairs(
-        nodes.astype(np.int32), geometry.points[nodes], True, radius, radius,
-        -pairs.normal[rows], pairs.gap[rows], pairs.tributary[rows], np.asarray(rows),
-    )  # fmt: skip
+        nodes.astype(np.int32),
+        geometry.points[nodes],
+        True,
+        radius,
+        radius,
+        -pairs.normal[rows],
+        pairs.gap[rows],
+        pairs.tributary[rows],
+        np.asarray(rows),
+    )
 
 
 def same_layer_windows(
@@ -234,11 +247,16 @@ def same_layer_sliding_groups(
         _, law, friction = same_layer_laws(geometry, pairs, windows.rows, settings)
         groups.append(
             sliding_group(
-                _same_layer_line_pairs(geometry, pairs, windows.rows), windows, chains, law,
-                friction, tangents=tangents, blocks=input_to_block,
+                _same_layer_line_pairs(geometry, pairs, windows.rows),
+                windows,
+                chains,
+                law,
+                friction,
+                tangents=tangents,
+                blocks=input_to_block,
                 weights=pairs.weight[windows.rows],
             )
-        )  # fmt: skip
+        )
     return groups
 
 

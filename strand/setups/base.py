@@ -101,8 +101,10 @@ class TestSetup(ABC):
 
     def check_parameter(self, name: str) -> None:
         if name not in self.parameters:
-            raise KeyError(f"{type(self).__name__} has no load parameter {name!r}; "
-                           f"it has {', '.join(self.parameters)}")  # fmt: skip
+            raise KeyError(
+                f"{type(self).__name__} has no load parameter {name!r}; "
+                f"it has {', '.join(self.parameters)}"
+            )
 
 
 class PenaltyLinks:

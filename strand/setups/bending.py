@@ -118,9 +118,14 @@ class ZoneBending:
     @property
     def section_moments(self) -> Array:
         return np.array(
-            [self.moment_zone_start, self.moment_zone_quarter, self.moment_zone_middle,
-             self.moment_zone_three_quarters, self.moment_zone_end]
-        )  # fmt: skip
+            [
+                self.moment_zone_start,
+                self.moment_zone_quarter,
+                self.moment_zone_middle,
+                self.moment_zone_three_quarters,
+                self.moment_zone_end,
+            ]
+        )
 
 
 class UniformBendingTest(TestSetup):

@@ -126,8 +126,9 @@ def beam_compliance(ei: float, tension: float, length: float, z: float) -> float
     p = np.sqrt(tension / ei)
     if p * a < 1e-3:
         return z**2 * (3 * length - 4 * z) / (48 * ei)
-    return float((z - (np.sinh(p * z) - np.tanh(p * a / 2) * (np.cosh(p * z) - 1)) / p)
-                 / (2 * tension))  # fmt: skip
+    return float(
+        (z - (np.sinh(p * z) - np.tanh(p * a / 2) * (np.cosh(p * z) - 1)) / p) / (2 * tension)
+    )
 
 
 @dataclass(frozen=True)
@@ -248,10 +249,14 @@ class SaddleTest(TestSetup):
         unloaded = self.lateral == 0.0 and self._prescribed == 0.0
         if self._driver is None or self._driver.solver is not solver or unloaded:
             self._driver = DisplacementControl(
-                solver, lambda: self.lateral, self.set_lateral, self.measured_displacement,
-                lambda: self._prescribed * control.per_unit, self.reference_stiffness,
+                solver,
+                lambda: self.lateral,
+                self.set_lateral,
+                self.measured_displacement,
+                lambda: self._prescribed * control.per_unit,
+                self.reference_stiffness,
                 tolerance=control.tolerance,
-            )  # fmt: skip
+            )
         else:
             self._driver.start()
         return self._driver
@@ -302,8 +307,9 @@ class SaddleTest(TestSetup):
         if self.control is None:
             return SaddleState(*loads)
         solves = self._driver.solves if self._driver is not None else 0
-        return SaddleControlState(*loads, self.measured_displacement(),
-                                  self._prescribed * self.control.per_unit, solves)  # fmt: skip
+        return SaddleControlState(
+            *loads, self.measured_displacement(), self._prescribed * self.control.per_unit, solves
+        )
 
     def moment_curvature(self, cells, residual=None, fit_half_length=0.015) -> MidspanBending:
         """Bending moment (N m) of the cross-section at z = L/2 and curvature (1/m) of the core.

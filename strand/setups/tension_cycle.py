@@ -84,9 +84,13 @@ class TensionCycleTest(SaddleTest):
 
     def state(self) -> TensionCycleState:
         return TensionCycleState(
-            self._tension, self._swing, self._tension + self._swing, self.lateral,
-            self.midspan_deflection(), self.end_displacement(),
-        )  # fmt: skip
+            self._tension,
+            self._swing,
+            self._tension + self._swing,
+            self.lateral,
+            self.midspan_deflection(),
+            self.end_displacement(),
+        )
 
     def moment_curvature(self, cells, residual=None) -> TensionSection:
         """The midspan section's axial resultant Σ n_z (N, axial and shear forces) and bending
@@ -94,5 +98,6 @@ class TensionCycleTest(SaddleTest):
         L = self.model.geometry.length
         moment, force = section_resultants(self.model, cells, L / 2)
         b = np.cross([0.0, 0.0, 1.0], self.direction)
-        return TensionSection(self._swing, self._tension + self._swing, float(force[2]),
-                              -float(moment @ b))  # fmt: skip
+        return TensionSection(
+            self._swing, self._tension + self._swing, float(force[2]), -float(moment @ b)
+        )

@@ -127,8 +127,10 @@ class DisplacementControl:
                 return NewtonResult(True, iterations, result.reason, result.residuals, seconds, lus)
             states.append((load, d, w.copy()))
             load = _next_load([(p, d) for p, d, _ in states], target, slope)
-        reason = (f"displacement control: {abs(d - target):.3g} m short of the prescribed "
-                  f"displacement after {n} solves (the last: {result.reason})")  # fmt: skip
+        reason = (
+            f"displacement control: {abs(d - target):.3g} m short of the prescribed "
+            f"displacement after {n} solves (the last: {result.reason})"
+        )
         return NewtonResult(False, iterations, reason, result.residuals, seconds, lus)
 
 
@@ -159,9 +161,11 @@ def _first_load(path: list[tuple[float, float]], target: float, slope: float) ->
     if len(path) < 3 or linear == p2:
         return linear
     (pa, da), (pb, db), (pc, dc) = path[-3:]
-    quadratic = (pa * (target - db) * (target - dc) / ((da - db) * (da - dc))
-                 + pb * (target - da) * (target - dc) / ((db - da) * (db - dc))
-                 + pc * (target - da) * (target - db) / ((dc - da) * (dc - db)))  # fmt: skip
+    quadratic = (
+        pa * (target - db) * (target - dc) / ((da - db) * (da - dc))
+        + pb * (target - da) * (target - dc) / ((db - da) * (db - dc))
+        + pc * (target - da) * (target - db) / ((dc - da) * (dc - db))
+    )
     return quadratic if 0 < (quadratic - p2) / (linear - p2) <= 2 else linear
 
 

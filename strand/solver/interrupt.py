@@ -25,8 +25,12 @@ class Interrupt:
             raise KeyboardInterrupt
         self.requested = True
         if self.stream is not None:
-            print("\nstrand: interrupted; stopping at the last converged step (Ctrl-C again to "
-                  "stop at once)", file=self.stream, flush=True)  # fmt: skip
+            print(
+                "\nstrand: interrupted; stopping at the last converged step (Ctrl-C again to "
+                "stop at once)",
+                file=self.stream,
+                flush=True,
+            )
 
     def __enter__(self) -> Interrupt:
         if threading.current_thread() is threading.main_thread():

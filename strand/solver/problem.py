@@ -128,9 +128,16 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         #: (``residual_calls``, ``jacobian_calls``) and the pair terms (stencils) evaluated with
         #: their tangent (``tangent_terms``) or without (``residual_terms``)
         self.timings = {
-            "residual": 0.0, "jacobian": 0.0, "terms": 0.0, "insert": 0.0, "solve": 0.0,
-            "residual_calls": 0, "jacobian_calls": 0, "tangent_terms": 0, "residual_terms": 0,
-        }  # fmt: skip
+            "residual": 0.0,
+            "jacobian": 0.0,
+            "terms": 0.0,
+            "insert": 0.0,
+            "solve": 0.0,
+            "residual_calls": 0,
+            "jacobian_calls": 0,
+            "tangent_terms": 0,
+            "residual_terms": 0,
+        }
 
     @property
     def w(self) -> fem.Function:
@@ -221,10 +228,14 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         with self._newton():
             second = self._solve_once()
         return NewtonResult(
-            second.converged, first.iterations + second.iterations, second.reason,
-            second.residuals, first.seconds + second.seconds,
-            first.factorisations + second.factorisations, fallback=True,
-        )  # fmt: skip
+            second.converged,
+            first.iterations + second.iterations,
+            second.reason,
+            second.residuals,
+            first.seconds + second.seconds,
+            first.factorisations + second.factorisations,
+            fallback=True,
+        )
 
     @contextmanager
     def _newton(self):

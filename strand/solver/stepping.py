@@ -245,9 +245,18 @@ class LoadStepper:
                 previous = None if settling else (h, dw)
                 self.solver.commit()
                 rec = StepRecord(
-                    stage, trial, result.iterations, result.residuals, result.seconds, cuts,
-                    failed, error, retries, rejections, lus,
-                )  # fmt: skip
+                    stage,
+                    trial,
+                    result.iterations,
+                    result.residuals,
+                    result.seconds,
+                    cuts,
+                    failed,
+                    error,
+                    retries,
+                    rejections,
+                    lus,
+                )
                 current = trial
                 if proposal is not None:
                     step = proposal

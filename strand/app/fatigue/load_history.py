@@ -50,9 +50,10 @@ def read_columns(path: str | Path, names: list[str]) -> dict[str, Array]:
     """The columns ``names`` of the history file ``path``, as float arrays (``HistoryError``)."""
     path = Path(path)
     rows = [
-        (n, line) for n, line in enumerate(_text(path).splitlines(), start=1)
+        (n, line)
+        for n, line in enumerate(_text(path).splitlines(), start=1)
         if line.strip() and not line.lstrip().startswith("#")
-    ]  # fmt: skip
+    ]
     if not rows:
         raise HistoryError(f"{path}: empty; expected a header line naming the columns")
     number, header = rows[0]
@@ -96,9 +97,13 @@ class HistorySpectrum:
 
 
 def history_spectrum(
-    path: str | Path, column: str, bins: int = 3, time_column: str = "",
-    tension_column: str = "", scale: float = 1.0,
-) -> HistorySpectrum:  # fmt: skip
+    path: str | Path,
+    column: str,
+    bins: int = 3,
+    time_column: str = "",
+    tension_column: str = "",
+    scale: float = 1.0,
+) -> HistorySpectrum:
     """The spectrum of ``column`` of the history file ``path`` in ``bins`` classes, its counts
     times ``scale`` (the times the history recurs in the spectrum's period), with the duration
     of ``time_column`` (which must increase) and the values of ``tension_column``."""
@@ -115,8 +120,10 @@ def history_spectrum(
         t = data[time_column]
         if np.any(np.diff(t) <= 0):
             k = int(np.argmax(np.diff(t) <= 0)) + 1
-            raise HistoryError(f"{path}: time column {time_column!r} does not increase at row "
-                               f"{k + 1} ({t[k - 1]:g} then {t[k]:g})")  # fmt: skip
+            raise HistoryError(
+                f"{path}: time column {time_column!r} does not increase at row "
+                f"{k + 1} ({t[k - 1]:g} then {t[k]:g})"
+            )
         duration = float(t[-1] - t[0])
     tension = data[tension_column] if tension_column else None
     return HistorySpectrum(column, spectrum, float(scale), duration, tension_column, tension)
@@ -125,11 +132,15 @@ def history_spectrum(
 def _tension_lines(h: HistorySpectrum) -> list[str]:
     t = h.tension
     mean = float(np.mean(t))
-    lines = [f"# mean of {h.tension_column!r} over the rows: {mean:.6g} (set [load] tension = "
-             f"{mean:.6g} in N), from {t.min():.6g} to {t.max():.6g}"]  # fmt: skip
+    lines = [
+        f"# mean of {h.tension_column!r} over the rows: {mean:.6g} (set [load] tension = "
+        f"{mean:.6g} in N), from {t.min():.6g} to {t.max():.6g}"
+    ]
     if np.ptp(t) > TENSION_SPREAD * abs(mean):
-        lines.append(f"# WARNING: {h.tension_column!r} varies by {np.ptp(t):.4g}, more than its "
-                     "mean: one [load] tension does not stand for it; split the history")  # fmt: skip
+        lines.append(
+            f"# WARNING: {h.tension_column!r} varies by {np.ptp(t):.4g}, more than its "
+            "mean: one [load] tension does not stand for it; split the history"
+        )
     return lines
 
 
@@ -151,8 +162,10 @@ def spectrum_block(h: HistorySpectrum, source: str = "") -> str:
     if h.tension is not None:
         lines += _tension_lines(h)
     lines += ["[fatigue]", "spectrum = ["]
-    lines += [f"    [{_at_least(a)}, {h.scale * n:.10g}]," for a, n in zip(s.amplitude, s.count,
-                                                                           strict=True)]  # fmt: skip
+    lines += [
+        f"    [{_at_least(a)}, {h.scale * n:.10g}],"
+        for a, n in zip(s.amplitude, s.count, strict=True)
+    ]
     return "\n".join(lines + ["]"]) + "\n"
 
 

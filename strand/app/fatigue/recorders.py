@@ -61,18 +61,27 @@ class PairHistory(_CycleHistory):
         self.model, self.a, self.b = model, p.a, p.b
         self.r_a, self.r_b = p.radius_a, p.radius_b
         x0 = 0.5 * (g.points[p.a] + g.points[p.b])
-        tangents = np.stack([g.points[nxt] - g.points[prev]
-                             for prev, nxt in (wire_neighbours(g, p.a), wire_neighbours(g, p.b))],
-                            axis=1)  # fmt: skip
+        tangents = np.stack(
+            [
+                g.points[nxt] - g.points[prev]
+                for prev, nxt in (wire_neighbours(g, p.a), wire_neighbours(g, p.b))
+            ],
+            axis=1,
+        )
         tangents /= np.linalg.norm(tangents, axis=2)[..., None]
         static = {
             "vertex": np.arange(len(p.a), dtype=np.int32)[:, None],
-            "wire_a": g.point_wire[p.a], "wire_b": g.point_wire[p.b],
-            "interface": p.interface, "line": (p.kind == LINE).astype(np.int8),
-            "z": x0[:, 2], "angle": np.degrees(np.arctan2(x0[:, 1], x0[:, 0])),
+            "wire_a": g.point_wire[p.a],
+            "wire_b": g.point_wire[p.b],
+            "interface": p.interface,
+            "line": (p.kind == LINE).astype(np.int8),
+            "z": x0[:, 2],
+            "angle": np.degrees(np.arctan2(x0[:, 1], x0[:, 0])),
             "crossing_angle": np.degrees(crossing_angle(tangents)),
-            "tributary": p.tributary, "radius_a": p.radius_a, "radius_b": p.radius_b,
-        }  # fmt: skip
+            "tributary": p.tributary,
+            "radius_a": p.radius_a,
+            "radius_b": p.radius_b,
+        }
         self.folder = Path(folder)
         self.writer = HistoryWriter(self.folder / "contact_pairs.h5", static, kind="contact pairs")
         self._origin = None
@@ -83,9 +92,15 @@ class PairHistory(_CycleHistory):
         point = x[self.a] + (self.r_a + 0.5 * r.gap)[:, None] * r.normal
         state = np.where(r.force > 0, np.where(r.slipping, 2, 1), 0).astype(np.int8)
         return {
-            "position": point, "force": r.force, "friction": r.friction, "gap": r.gap,
-            "state": state, "slip": r.slip, "sliding": r.sliding, "work": r.work,
-        }  # fmt: skip
+            "position": point,
+            "force": r.force,
+            "friction": r.friction,
+            "gap": r.gap,
+            "state": state,
+            "slip": r.slip,
+            "sliding": r.sliding,
+            "work": r.work,
+        }
 
     def _write(self, step: RunStep, arrays: dict, load: float) -> None:
         from ..history import write_points_xdmf
@@ -121,9 +136,14 @@ class WireSectionHistory(_CycleHistory):
         diameters = np.array([lay.wire.diameter for lay in g.cable.layers])
         self.direction = np.asarray(direction, float)
         self.model, self.core = model, model.core_points()
-        static = {"wire": g.cell_wire, "layer": g.cell_layer, "z": cells_now.z,
-                  "phi": cells_now.phi, "diameter": diameters[g.cell_layer],
-                  "core_z": g.points[self.core, 2]}  # fmt: skip
+        static = {
+            "wire": g.cell_wire,
+            "layer": g.cell_layer,
+            "z": cells_now.z,
+            "phi": cells_now.phi,
+            "diameter": diameters[g.cell_layer],
+            "core_z": g.points[self.core, 2],
+        }
         self.writer = HistoryWriter(Path(folder) / "wire_sections.h5", static, kind="wire sections")
 
     def _arrays(self, ctx: StepContext) -> dict:
@@ -135,8 +155,15 @@ class WireSectionHistory(_CycleHistory):
         m = section_components(c.moment, c.tangent, e1, e2)
         u = self.model.positions()[self.core] - self.model.geometry.points[self.core]
         midspan = section_resultants(self.model, c, self.model.geometry.length / 2)[1]
-        return {"axial": c.axial, "m1": m[:, 0], "m2": m[:, 1], "torque": c.torque,
-                "spin": c.spin, "core_u": u, "midspan_force": midspan}  # fmt: skip
+        return {
+            "axial": c.axial,
+            "m1": m[:, 0],
+            "m2": m[:, 1],
+            "torque": c.torque,
+            "spin": c.spin,
+            "core_u": u,
+            "midspan_force": midspan,
+        }
 
     def close(self) -> None:
         self.writer.close()

@@ -90,8 +90,10 @@ def _pair_cells_and_angles(pairs: History, sections: History):
 def _write_csv(path: Path, columns: dict[str, npt.ArrayLike], formats: dict[str, str]) -> None:
     names = list(columns)
     arrays = [np.asarray(columns[n]) for n in names]
-    kinds = ["s" if a.dtype.kind in "US" else formats.get(n, "g") for n, a in zip(names, arrays,
-                                                                                    strict=True)]  # fmt: skip
+    kinds = [
+        "s" if a.dtype.kind in "US" else formats.get(n, "g")
+        for n, a in zip(names, arrays, strict=True)
+    ]
     with open(path, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(names)
@@ -123,14 +125,16 @@ def _damage(series: Array, curve: SNCurve | None) -> float:
     return miner_damage(c.range, c.count, curve)
 
 
-def crossing_results(pairs: History, sections: History, cable: Cable, curves: list,
-                     cycles: Cycles, stuck_slip: float) -> dict[str, Array]:  # fmt: skip
+def crossing_results(
+    pairs: History, sections: History, cable: Cable, curves: list, cycles: Cycles, stuck_slip: float
+) -> dict[str, Array]:
     """Per pair: the worst counted cycle's fretting results, Hertz contact, Ruiz's parameters,
     whether it stayed stuck throughout (``stuck_slip``, m) and the Miner damage of the wires'
     facing surfaces under their layers' ``curves`` (NaN where neither has one)."""
     st = pairs.static
-    cc = crossing_cycles(cycles, pairs["force"], pairs["friction"], pairs["slip"],
-                         pairs["sliding"], pairs["work"])  # fmt: skip
+    cc = crossing_cycles(
+        cycles, pairs["force"], pairs["friction"], pairs["slip"], pairs["sliding"], pairs["work"]
+    )
     wires = [lay.wire for lay in cable.layers]
     inner, outer = st["interface"], st["interface"] + 1
     E_a, nu_a = (np.array([getattr(w, k) for w in wires])[inner] for k in ("E", "nu"))
@@ -138,8 +142,9 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curves: li
     line = st["line"].astype(bool)
     beta = np.radians(st["crossing_angle"])
     # Hertz at every cycle's peak force: (C, P)
-    a, b, p0 = contact_ellipse(st["radius_a"], st["radius_b"], beta, E_a, nu_a, E_b, nu_b,
-                               force=cc.peak_force)  # fmt: skip
+    a, b, p0 = contact_ellipse(
+        st["radius_a"], st["radius_b"], beta, E_a, nu_a, E_b, nu_b, force=cc.peak_force
+    )
     length = st["tributary"]
     q = np.divide(cc.peak_force, length, out=np.zeros_like(cc.peak_force), where=length > 0)
     half, p0_line = line_contact(st["radius_a"], st["radius_b"], E_a, nu_a, E_b, nu_b, q)
@@ -151,8 +156,12 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curves: li
     sigma_a = _stress_at(sections, cells_a, psi_a)  # (S, P)
     sigma_b = _stress_at(sections, cells_b, psi_b)
     sigma = np.maximum(sigma_a, sigma_b)
-    sigma_peak = np.array([sigma[cycle_steps(i, j, len(sigma))].max(axis=0)
-                           for i, j in zip(cycles.start, cycles.end, strict=True)])  # fmt: skip
+    sigma_peak = np.array(
+        [
+            sigma[cycle_steps(i, j, len(sigma))].max(axis=0)
+            for i, j in zip(cycles.start, cycles.end, strict=True)
+        ]
+    )
     f1, f2 = ruiz_parameters(cc.friction_amplitude, area, cc.slip_amplitude, sigma_peak)
     worst = np.argmax(f2 if np.any(f2 > 0) else cc.slip_amplitude, axis=0)  # (P,)
     pick = lambda x: np.take_along_axis(x, worst[None, :], axis=0)[0]  # noqa: E731
@@ -162,19 +171,28 @@ def crossing_results(pairs: History, sections: History, cable: Cable, curves: li
         if not np.all(np.isnan(sides)):
             damage[k] = np.nanmax(sides)
     has = np.array([c is not None for c in curves])
-    assessed = np.select([has[inner] & has[outer], has[inner], has[outer]],
-                         ["both", "inner", "outer"], "not assessed")  # fmt: skip
+    assessed = np.select(
+        [has[inner] & has[outer], has[inner], has[outer]],
+        ["both", "inner", "outer"],
+        "not assessed",
+    )
     return {
         "slip_amplitude": pick(cc.slip_amplitude),
         "displacement_amplitude": pick(cc.displacement_amplitude),
         "friction_amplitude": pick(cc.friction_amplitude),
         "peak_force": pick(cc.peak_force),
         "mean_force": pick(cc.mean_force),
-        "semi_axis_a": pick(a), "semi_axis_b": pick(b), "peak_pressure": pick(p0),
-        "surface_stress": pick(sigma_peak), "ruiz_f1": pick(f1), "ruiz_f2": pick(f2),
-        "energy": cc.energy.sum(axis=0), "damage": damage, "assessed": assessed,
+        "semi_axis_a": pick(a),
+        "semi_axis_b": pick(b),
+        "peak_pressure": pick(p0),
+        "surface_stress": pick(sigma_peak),
+        "ruiz_f1": pick(f1),
+        "ruiz_f2": pick(f2),
+        "energy": cc.energy.sum(axis=0),
+        "damage": damage,
+        "assessed": assessed,
         "stuck": stuck_throughout(pairs["sliding"], stuck_slip),
-    }  # fmt: skip
+    }
 
 
 def element_results(sections: History, n_points: int, curves: list) -> dict[str, Array]:
@@ -197,10 +215,13 @@ def element_results(sections: History, n_points: int, curves: list) -> dict[str,
         if curve is not None:
             damage[e] = max(_damage(sigma[:, e, k], curve) for k in range(n_points))
     return {
-        "angle": np.degrees(psi[worst]), "range": ranges[rows, worst],
-        "mean": 0.5 * (hi + lo)[rows, worst], "peak": hi[rows, worst],
-        "shear_range": np.ptp(tau, axis=0), "damage": damage,
-    }  # fmt: skip
+        "angle": np.degrees(psi[worst]),
+        "range": ranges[rows, worst],
+        "mean": 0.5 * (hi + lo)[rows, worst],
+        "peak": hi[rows, worst],
+        "shear_range": np.ptp(tau, axis=0),
+        "damage": damage,
+    }
 
 
 def _worst_of(elements: dict[str, Array], z: Array, mine: Array) -> tuple:
@@ -210,8 +231,12 @@ def _worst_of(elements: dict[str, Array], z: Array, mine: Array) -> tuple:
         return np.nan, np.nan, np.nan, np.nan
     k = mine[np.argmax(elements["range"][mine])]
     d = elements["damage"][mine]
-    return elements["range"][k], z[k], elements["angle"][k], (np.nan if np.all(np.isnan(d))
-                                                              else np.nanmax(d))  # fmt: skip
+    return (
+        elements["range"][k],
+        z[k],
+        elements["angle"][k],
+        (np.nan if np.all(np.isnan(d)) else np.nanmax(d)),
+    )
 
 
 def _repetitions(damage: Array) -> Array:
@@ -244,8 +269,14 @@ def wire_results(sections: History, elements: dict[str, Array], clamp: Array, cu
     return out
 
 
-def poffenberger_swart_check(sections: History, elements: dict[str, Array], cable: Cable,
-                             tension: float, direction, distance: float) -> dict:  # fmt: skip
+def poffenberger_swart_check(
+    sections: History,
+    elements: dict[str, Array],
+    cable: Cable,
+    tension: float,
+    direction,
+    distance: float,
+) -> dict:
     """Poffenberger–Swart at the clamp z = 0, where its long-span assumption holds
     (``strand.fatigue.poffenberger.span_check``; else ``holds`` False and the ``reason``): Y_b
     the peak-to-peak displacement of the strand axis along ``direction`` at ``distance`` from
@@ -265,15 +296,28 @@ def poffenberger_swart_check(sections: History, elements: dict[str, Array], cabl
     mouth = (st["layer"] == outer) & (st["z"] < distance / 4)
     model = 0.5 * float(elements["range"][mouth].max())
     ref = K * y_b
-    return {"holds": True, "K": K, "Y_b": y_b, "sigma_a": ref, "model": model,
-            "ratio": model / ref if ref > 0 else np.nan, "distance": distance, "span": span,
-            "span_error": check.error}  # fmt: skip
+    return {
+        "holds": True,
+        "K": K,
+        "Y_b": y_b,
+        "sigma_a": ref,
+        "model": model,
+        "ratio": model / ref if ref > 0 else np.nan,
+        "distance": distance,
+        "span": span,
+        "span_error": check.error,
+    }
 
 
 def fatigue_report(
-    folder: str | Path, cable: Cable, tension: float, settings: FatigueSettings | None = None,
-    direction=(1.0, 0.0, 0.0), clamp: bool = True, write: bool = True,
-) -> FatigueReport:  # fmt: skip
+    folder: str | Path,
+    cable: Cable,
+    tension: float,
+    settings: FatigueSettings | None = None,
+    direction=(1.0, 0.0, 0.0),
+    clamp: bool = True,
+    write: bool = True,
+) -> FatigueReport:
     """Read the run's histories in ``folder``, compute the fatigue results and (``write``) put
     the CSV files and ``fatigue.txt`` there. ``clamp``: the set-up clamps the strand at z = 0
     (Poffenberger–Swart applies there)."""
@@ -298,10 +342,12 @@ def fatigue_report(
     wires = wire_results(sections, elements, elements["clamp"], curves)
     tn = tension_check(sections, cable, settings.breaking_strength, wires)
     ps = (
-        poffenberger_swart_check(sections, elements, cable, tension, direction,
-                                 settings.clamp_distance)
-        if clamp else None
-    )  # fmt: skip
+        poffenberger_swart_check(
+            sections, elements, cable, tension, direction, settings.clamp_distance
+        )
+        if clamp
+        else None
+    )
     report = FatigueReport(cycles, crossings, elements, wires, ps, "", end_zone, length, tn, curves)
     report.text = summary_text(pairs, sections, cable, curves, settings, report)
     if write:
@@ -312,29 +358,55 @@ def fatigue_report(
 def write_report(folder: Path, pairs: History, sections: History, r: FatigueReport) -> None:
     """The CSV files and ``fatigue.txt`` of ``r`` in ``folder``."""
     st, c = pairs.static, r.crossings
-    _write_csv(folder / "crossings.csv", {
-        "pair": np.arange(len(st["z"])), "interface": st["interface"], "wire_a": st["wire_a"],
-        "wire_b": st["wire_b"], "line": st["line"], "z_m": st["z"],
-        "zone": zone_names(c["clamp"]), "angle_deg": st["angle"],
-        "crossing_angle_deg": st["crossing_angle"],
-        "stuck_throughout": c["stuck"].astype(int),
-        "slip_amplitude_um": 1e6 * c["slip_amplitude"],
-        "displacement_amplitude_um": 1e6 * c["displacement_amplitude"],
-        "friction_amplitude_N": c["friction_amplitude"], "peak_force_N": c["peak_force"],
-        "mean_force_N": c["mean_force"], "hertz_a_um": 1e6 * c["semi_axis_a"],
-        "hertz_b_um": 1e6 * c["semi_axis_b"], "peak_pressure_MPa": 1e-6 * c["peak_pressure"],
-        "surface_stress_MPa": 1e-6 * c["surface_stress"], "ruiz_F1_J_m2": c["ruiz_f1"],
-        "ruiz_F2_MPa_J_m2": 1e-6 * c["ruiz_f2"], "energy_J": c["energy"], "damage": c["damage"],
-        "damage_assessed": c["assessed"],
-    }, {"z_m": ".5f", "angle_deg": ".2f", "crossing_angle_deg": ".2f"})  # fmt: skip
+    _write_csv(
+        folder / "crossings.csv",
+        {
+            "pair": np.arange(len(st["z"])),
+            "interface": st["interface"],
+            "wire_a": st["wire_a"],
+            "wire_b": st["wire_b"],
+            "line": st["line"],
+            "z_m": st["z"],
+            "zone": zone_names(c["clamp"]),
+            "angle_deg": st["angle"],
+            "crossing_angle_deg": st["crossing_angle"],
+            "stuck_throughout": c["stuck"].astype(int),
+            "slip_amplitude_um": 1e6 * c["slip_amplitude"],
+            "displacement_amplitude_um": 1e6 * c["displacement_amplitude"],
+            "friction_amplitude_N": c["friction_amplitude"],
+            "peak_force_N": c["peak_force"],
+            "mean_force_N": c["mean_force"],
+            "hertz_a_um": 1e6 * c["semi_axis_a"],
+            "hertz_b_um": 1e6 * c["semi_axis_b"],
+            "peak_pressure_MPa": 1e-6 * c["peak_pressure"],
+            "surface_stress_MPa": 1e-6 * c["surface_stress"],
+            "ruiz_F1_J_m2": c["ruiz_f1"],
+            "ruiz_F2_MPa_J_m2": 1e-6 * c["ruiz_f2"],
+            "energy_J": c["energy"],
+            "damage": c["damage"],
+            "damage_assessed": c["assessed"],
+        },
+        {"z_m": ".5f", "angle_deg": ".2f", "crossing_angle_deg": ".2f"},
+    )
     s, e = sections.static, r.elements
-    _write_csv(folder / "wire_stresses.csv", {
-        "element": np.arange(len(s["z"])), "wire": s["wire"], "layer": s["layer"], "z_m": s["z"],
-        "zone": zone_names(e["clamp"]), "phi_deg": s["phi"], "psi_deg": e["angle"],
-        "range_MPa": 1e-6 * e["range"], "mean_MPa": 1e-6 * e["mean"],
-        "peak_MPa": 1e-6 * e["peak"], "shear_range_MPa": 1e-6 * e["shear_range"],
-        "damage": e["damage"],
-    }, {"z_m": ".5f", "phi_deg": ".2f", "psi_deg": ".1f"})  # fmt: skip
+    _write_csv(
+        folder / "wire_stresses.csv",
+        {
+            "element": np.arange(len(s["z"])),
+            "wire": s["wire"],
+            "layer": s["layer"],
+            "z_m": s["z"],
+            "zone": zone_names(e["clamp"]),
+            "phi_deg": s["phi"],
+            "psi_deg": e["angle"],
+            "range_MPa": 1e-6 * e["range"],
+            "mean_MPa": 1e-6 * e["mean"],
+            "peak_MPa": 1e-6 * e["peak"],
+            "shear_range_MPa": 1e-6 * e["shear_range"],
+            "damage": e["damage"],
+        },
+        {"z_m": ".5f", "phi_deg": ".2f", "psi_deg": ".1f"},
+    )
     w = r.wires
     columns = {"wire": np.arange(len(w["range"])), "layer": w["layer"], "sn_curve": w["curve"]}
     for suffix, zone in (("", ""), ("_free", "_free_span"), ("_clamp", "_clamp_zone")):
@@ -345,7 +417,8 @@ def write_report(folder: Path, pairs: History, sections: History, r: FatigueRepo
             f"damage{zone}": w["damage" + suffix],
             f"repetitions_to_failure{zone}": w["repetitions" + suffix],
         }
-    formats = {k: ".5f" if k.startswith("z") else ".1f" for k in columns
-               if k.startswith(("z", "psi"))}  # fmt: skip
+    formats = {
+        k: ".5f" if k.startswith("z") else ".1f" for k in columns if k.startswith(("z", "psi"))
+    }
     _write_csv(folder / "wires.csv", columns, formats)
     (folder / "fatigue.txt").write_text(r.text)

@@ -74,10 +74,16 @@ def _members(case: Case, results: list, parameter: str):
         name = f"{parameter}_{amplitude:g}"
         r = results[i] if i < len(results) else None
         why = (
-            "was not run" if r is None else "was interrupted" if r.interrupted
-            else f"failed ({r.failure})" if r.failure
-            else "has no fatigue report" if r.fatigue is None else ""
-        )  # fmt: skip
+            "was not run"
+            if r is None
+            else "was interrupted"
+            if r.interrupted
+            else f"failed ({r.failure})"
+            if r.failure
+            else "has no fatigue report"
+            if r.fatigue is None
+            else ""
+        )
         if why:
             raise SpectrumError(f"no spectrum: the member {name} {why}, so its damage is unknown")
         reports.append(r.fatigue)
@@ -121,11 +127,13 @@ def _tension(reports: list, counts: Array) -> dict:
     if all(c["api"] is not None for c in checks):
         api = float(spectrum_damage(counts, [c["api"] for c in checks])[0])
     return {
-        "dnv": float(dnv), "dnv_shares": dnv_shares, "api": api,
+        "dnv": float(dnv),
+        "dnv_shares": dnv_shares,
+        "api": api,
         "range": np.array([c["range"] for c in checks]),
         "mean": np.array([c["mean"] for c in checks]),
         "cycle": np.array([c["cycle"] for c in checks]),
-    }  # fmt: skip
+    }
 
 
 def spectrum_report(case: Case, results: list, parameter: str, unit: str) -> SpectrumReport:
@@ -137,14 +145,25 @@ def spectrum_report(case: Case, results: list, parameter: str, unit: str) -> Spe
     c_total, c_shares = spectrum_damage(counts, [r.crossings["damage"] for r in reports])
     elements = {k: first.elements[k] for k in ("wire", "layer", "z", "clamp")}
     elements |= {"damage": e_total, "shares": e_shares}
-    crossings = {k: first.crossings[k] for k in ("interface", "wire_a", "wire_b", "z", "clamp",
-                                                 "line")}  # fmt: skip
+    crossings = {
+        k: first.crossings[k] for k in ("interface", "wire_a", "wire_b", "z", "clamp", "line")
+    }
     crossings |= {"damage": c_total, "shares": c_shares}
     wires = _wire_rows(elements, first.wires["curve"])
     names = [f"{parameter}_{a:g}" for a in amplitudes]
-    report = SpectrumReport(parameter, unit, amplitudes, counts, names, elements, crossings,
-                            wires, _tension(reports, counts), first.end_zone,
-                            first.length)  # fmt: skip
+    report = SpectrumReport(
+        parameter,
+        unit,
+        amplitudes,
+        counts,
+        names,
+        elements,
+        crossings,
+        wires,
+        _tension(reports, counts),
+        first.end_zone,
+        first.length,
+    )
     report.text = spectrum_text(report)
     return report
 
@@ -152,8 +171,9 @@ def spectrum_report(case: Case, results: list, parameter: str, unit: str) -> Spe
 def _shares(r: SpectrumReport, shares: Array) -> str:
     if np.all(np.isnan(shares)):
         return "no damage"
-    return ", ".join(f"{a:g} {r.unit} {100 * s:.0f} %" for a, s in zip(r.amplitudes, shares,
-                                                                         strict=True))  # fmt: skip
+    return ", ".join(
+        f"{a:g} {r.unit} {100 * s:.0f} %" for a, s in zip(r.amplitudes, shares, strict=True)
+    )
 
 
 def _periods(d: float) -> str:
@@ -195,23 +215,33 @@ def _zone_lines(r: SpectrumReport, zone: str) -> list[str]:
 
 def _tension_lines(r: SpectrumReport) -> list[str]:
     t, w = r.tension, r.wires
-    ranges = ", ".join(f"{a:g} {r.unit}: {1e-3 * dt:.4g} kN" for a, dt in zip(r.amplitudes,
-                                                                                t["range"],
-                                                                                strict=True))  # fmt: skip
-    lines = [f"strand-level T–N on the strand's tension at midspan (mean {1e-3 * t['mean'][0]:.4g} "
-             f"kN; largest range per amplitude {ranges}):"]  # fmt: skip
+    ranges = ", ".join(
+        f"{a:g} {r.unit}: {1e-3 * dt:.4g} kN"
+        for a, dt in zip(r.amplitudes, t["range"], strict=True)
+    )
+    lines = [
+        f"strand-level T–N on the strand's tension at midspan (mean {1e-3 * t['mean'][0]:.4g} "
+        f"kN; largest range per amplitude {ranges}):"
+    ]
     if not t["cycle"].any():
-        lines.append(f"  no tension cycle at any amplitude (ranges under "
-                     f"{100 * TENSION_CYCLE_SHARE:g} % of the mean): T–N sees next to no damage")  # fmt: skip
+        lines.append(
+            f"  no tension cycle at any amplitude (ranges under "
+            f"{100 * TENSION_CYCLE_SHARE:g} % of the mean): T–N sees next to no damage"
+        )
     lines.append(f"  DNV-OS-E301 spiral rope: D = {t['dnv']:.3g}; {_shares(r, t['dnv_shares'])}")
-    lines.append("  API RP 2SK spiral strand: not checked ([fatigue] breaking_strength not given)"
-                 if t["api"] is None else f"  API RP 2SK spiral strand: D = {t['api']:.3g}")  # fmt: skip
+    lines.append(
+        "  API RP 2SK spiral strand: not checked ([fatigue] breaking_strength not given)"
+        if t["api"] is None
+        else f"  API RP 2SK spiral strand: D = {t['api']:.3g}"
+    )
     if np.all(np.isnan(w["damage"])):
         lines.append("  wire-level model, same spectrum: no wire assessed")
     else:
         k = int(np.nanargmax(w["damage"]))
-        lines.append(f"  wire-level model, same spectrum: largest D = {w['damage'][k]:.3g} (wire "
-                     f"{w['wire'][k]}, {w['zone'][k]})")  # fmt: skip
+        lines.append(
+            f"  wire-level model, same spectrum: largest D = {w['damage'][k]:.3g} (wire "
+            f"{w['wire'][k]}, {w['zone'][k]})"
+        )
     return lines
 
 
@@ -227,16 +257,20 @@ def spectrum_text(r: SpectrumReport) -> str:
         *(
             f"  {a:>13g}  {n:>10.4g}  {m}"
             for a, n, m in zip(r.amplitudes, r.counts, r.names, strict=True)
-        ),  # fmt: skip
+        ),
     ]
-    curves = sorted({(int(la), str(cu)) for la, cu in zip(r.wires["layer"], r.wires["curve"],
-                                                           strict=True)})  # fmt: skip
+    curves = sorted(
+        {(int(la), str(cu)) for la, cu in zip(r.wires["layer"], r.wires["curve"], strict=True)}
+    )
     lines.append("S–N curves: " + ", ".join(f"layer {la} {cu}" for la, cu in curves))
     for zone in ZONES:
         where = "" if zone == ZONES[0] else f" (within {r.end_zone:.3g} m of an end)"
         if not np.any(r.wires["zone"] == zone):
-            lines.append(no_free_span(r.length, r.end_zone) if zone == ZONES[0] else
-                         f"{zone}{where}: none: no element lies within it")  # fmt: skip
+            lines.append(
+                no_free_span(r.length, r.end_zone)
+                if zone == ZONES[0]
+                else f"{zone}{where}: none: no element lies within it"
+            )
             continue
         lines += [f"{zone}{where}:", *_zone_lines(r, zone)]
     return "\n".join(lines + _tension_lines(r)) + "\n"
@@ -267,17 +301,34 @@ def write_spectrum(folder: Path, case: Case, results: list, parameter: str, unit
         return f"{e}\n"
     w, c = r.wires, r.crossings
     with np.errstate(divide="ignore"):
-        _write_csv(folder / "spectrum.csv", {
-            "wire": w["wire"], "layer": w["layer"], "zone": zone_names(w["zone"] == ZONES[1]),
-            "sn_curve": w["curve"],
-            "element": w["element"], "z_m": w["z"], "damage": w["damage"],
-            "periods_to_failure": 1 / w["damage"], **_share_columns(r, w["shares"].T),
-        })  # fmt: skip
-        _write_csv(folder / "spectrum_crossings.csv", {
-            "pair": np.arange(len(c["z"])), "interface": c["interface"], "wire_a": c["wire_a"],
-            "wire_b": c["wire_b"], "line": c["line"].astype(int),
-            "zone": zone_names(c["clamp"]), "z_m": c["z"], "damage": c["damage"],
-            "periods_to_failure": 1 / c["damage"], **_share_columns(r, c["shares"]),
-        })  # fmt: skip
+        _write_csv(
+            folder / "spectrum.csv",
+            {
+                "wire": w["wire"],
+                "layer": w["layer"],
+                "zone": zone_names(w["zone"] == ZONES[1]),
+                "sn_curve": w["curve"],
+                "element": w["element"],
+                "z_m": w["z"],
+                "damage": w["damage"],
+                "periods_to_failure": 1 / w["damage"],
+                **_share_columns(r, w["shares"].T),
+            },
+        )
+        _write_csv(
+            folder / "spectrum_crossings.csv",
+            {
+                "pair": np.arange(len(c["z"])),
+                "interface": c["interface"],
+                "wire_a": c["wire_a"],
+                "wire_b": c["wire_b"],
+                "line": c["line"].astype(int),
+                "zone": zone_names(c["clamp"]),
+                "z_m": c["z"],
+                "damage": c["damage"],
+                "periods_to_failure": 1 / c["damage"],
+                **_share_columns(r, c["shares"]),
+            },
+        )
     (folder / "spectrum.txt").write_text(r.text)
     return r.text

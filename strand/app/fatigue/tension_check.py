@@ -35,14 +35,17 @@ def midspan_axial_sum(sections: History, cable: Cable) -> Array:
     angle: the tension without the wires' shear forces (~3e-5 low on a 1+6)."""
     st = sections.static
     middle = 0.5 * (st["z"].min() + st["z"].max())
-    cells = [np.flatnonzero(st["wire"] == w)[np.argmin(np.abs(st["z"][st["wire"] == w] - middle))]
-             for w in np.unique(st["wire"])]  # fmt: skip
+    cells = [
+        np.flatnonzero(st["wire"] == w)[np.argmin(np.abs(st["z"][st["wire"] == w] - middle))]
+        for w in np.unique(st["wire"])
+    ]
     cos = np.cos([lay.alpha for lay in cable.layers])
     return sections["axial"][:, cells] @ cos[st["layer"][cells]]
 
 
-def tension_check(sections: History, cable: Cable, breaking_strength: float,
-                  wires: dict[str, Array]) -> dict:  # fmt: skip
+def tension_check(
+    sections: History, cable: Cable, breaking_strength: float, wires: dict[str, Array]
+) -> dict:
     """The mooring standards' strand-level check on the strand's tension history, repeating:
     DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage per cycle, beside the
     wire-level model's largest; ``cycle`` False where the tension stays within
@@ -58,8 +61,12 @@ def tension_check(sections: History, cable: Cable, breaking_strength: float,
     damage = wires["damage"]
     worst = int(np.nanargmax(damage)) if not np.all(np.isnan(damage)) else None
     return {
-        "mean": mean, "range": largest, "area": area,
+        "mean": mean,
+        "range": largest,
+        "area": area,
         "cycle": largest >= TENSION_CYCLE_SHARE * abs(mean),
-        "dnv": dnv, "api": api, "wire": worst,
+        "dnv": dnv,
+        "api": api,
+        "wire": worst,
         "wire_damage": float(damage[worst]) if worst is not None else np.nan,
-    }  # fmt: skip
+    }

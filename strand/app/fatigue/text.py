@@ -42,8 +42,10 @@ def _crossing_line(st, c, k) -> str:
     )
 
 
-_CROSSING_HEAD = ("  pair  interface  z (m)    angle (°)  slip amp (µm)  P peak (N)  Q amp (N)  "
-                  "p0 (MPa)  σ_T (MPa)  F2 (MPa J/m²)")  # fmt: skip
+_CROSSING_HEAD = (
+    "  pair  interface  z (m)    angle (°)  slip amp (µm)  P peak (N)  Q amp (N)  "
+    "p0 (MPa)  σ_T (MPa)  F2 (MPa J/m²)"
+)
 
 
 def _curve_lines(cable: Cable, curves: list) -> list[str]:
@@ -57,8 +59,10 @@ def _curve_lines(cable: Cable, curves: list) -> list[str]:
         lines.append(f"  layers {on}: {curve.name} ({curve.source})")
     missing = [i for i, c in enumerate(curves) if c is None]
     if missing:
-        lines.append(f"  layers {missing}: not assessed (no S–N curve for their wires' material;"
-                     " damage NaN in the CSV files)")  # fmt: skip
+        lines.append(
+            f"  layers {missing}: not assessed (no S–N curve for their wires' material;"
+            " damage NaN in the CSV files)"
+        )
     return lines
 
 
@@ -96,15 +100,19 @@ def _zone_text(zone: str, pairs, sections, r: FatigueReport, mask_p, mask_e, mas
         )
     if not order:
         assessed = ~np.isnan(damage[mask_w])
-        lines.append("  none: no cycle damages the assessed wires" if assessed.any()
-                     else "  none assessed")  # fmt: skip
+        lines.append(
+            "  none: no cycle damages the assessed wires" if assessed.any() else "  none assessed"
+        )
     return lines
 
 
 def _tension_lines(tn: dict) -> list[str]:
     """The strand-level T–N check beside the wire-level model, on the same history."""
-    wire = ("no wire assessed" if tn["wire"] is None else
-            f"largest damage {tn['wire_damage']:.3g} per cycle (wire {tn['wire']})")  # fmt: skip
+    wire = (
+        "no wire assessed"
+        if tn["wire"] is None
+        else f"largest damage {tn['wire_damage']:.3g} per cycle (wire {tn['wire']})"
+    )
     if not tn["cycle"]:
         return [
             f"tension-only practice (T–N): no tension cycle: the strand's tension at midspan "
@@ -112,9 +120,12 @@ def _tension_lines(tn: dict) -> list[str]:
             f"{100 * TENSION_CYCLE_SHARE:g} %), so a T–N check sees no damage; the wire-level "
             f"model: {wire}"
         ]
-    api = ("API RP 2SK spiral strand (N R^5.05 = 10^(3.25 − 3.43 L_m), R = ΔT/MBS): damage "
-           f"{tn['api']:.3g} per cycle" if tn["api"] is not None else
-           "API RP 2SK: not checked ([fatigue] breaking_strength not given)")  # fmt: skip
+    api = (
+        "API RP 2SK spiral strand (N R^5.05 = 10^(3.25 − 3.43 L_m), R = ΔT/MBS): damage "
+        f"{tn['api']:.3g} per cycle"
+        if tn["api"] is not None
+        else "API RP 2SK: not checked ([fatigue] breaking_strength not given)"
+    )
     return [
         f"tension-only practice (T–N) on the strand's tension at midspan (mean "
         f"{1e-3 * tn['mean']:.4g} kN, largest range {1e-3 * tn['range']:.4g} kN, rainflow of the "
@@ -126,8 +137,9 @@ def _tension_lines(tn: dict) -> list[str]:
     ]
 
 
-def summary_text(pairs, sections, cable: Cable, curves: list, settings: FatigueSettings,
-                 r: FatigueReport) -> str:  # fmt: skip
+def summary_text(
+    pairs, sections, cable: Cable, curves: list, settings: FatigueSettings, r: FatigueReport
+) -> str:
     """The report's summary: cycles, stuck pairs, per zone the worst crossings, hot spots and
     first wires to fail; the T–N check; P–S."""
     st, c, cycles = pairs.static, r.crossings, r.cycles
@@ -154,11 +166,15 @@ def summary_text(pairs, sections, cable: Cable, curves: list, settings: FatigueS
         if not mask_e.any():
             lines.append(f"{zone}: none: no element lies within {r.end_zone:.4g} m of an end")
             continue
-        where = f"z in [{span[0]:.4g}, {span[1]:.4g}] m" if not on else (
-            f"within {r.end_zone:.4g} m of an end")  # fmt: skip
+        where = (
+            f"z in [{span[0]:.4g}, {span[1]:.4g}] m"
+            if not on
+            else (f"within {r.end_zone:.4g} m of an end")
+        )
         lines.append(f"{zone} ({where}):")
-        lines += _zone_text(zone, pairs, sections, r, c["clamp"] == on, mask_e,
-                            np.ones(len(w_layers), bool))  # fmt: skip
+        lines += _zone_text(
+            zone, pairs, sections, r, c["clamp"] == on, mask_e, np.ones(len(w_layers), bool)
+        )
     lines += _tension_lines(r.tension_check)
     ps = r.poffenberger_swart
     if ps is not None and ps["holds"]:

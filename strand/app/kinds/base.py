@@ -86,8 +86,10 @@ class SetupKind(ABC):
         may not exceed the largest."""
         first, largest = self.step_sizes(steps)
         if first > largest:
-            raise CaseError(f"[steps] {self.parameter} = {first} {self.unit} exceeds "
-                            f"{self.parameter}_max = {largest} {self.unit}")  # fmt: skip
+            raise CaseError(
+                f"[steps] {self.parameter} = {first} {self.unit} exceeds "
+                f"{self.parameter}_max = {largest} {self.unit}"
+            )
 
     def check_case(self, case: Case) -> None:
         """Check a case of this kind against its mesh and common settings (``CaseError``)."""
@@ -135,8 +137,16 @@ def tension_then_cycle(
     """Tension to ``load.tension``, then the legs ``load.cycle`` × ``amplitude`` of ``parameter``,
     each starting with increment ``first``, growing up to ``largest``."""
     steps = case.steps
-    legs = cycle_stages(parameter, amplitude, case.load.cycle, first, largest, cuts=steps.cuts,
-                        growth=steps.growth, predictor=steps.predictor)  # fmt: skip
+    legs = cycle_stages(
+        parameter,
+        amplitude,
+        case.load.cycle,
+        first,
+        largest,
+        cuts=steps.cuts,
+        growth=steps.growth,
+        predictor=steps.predictor,
+    )
     return LoadProgramme((tension_stage(case), *legs), parameter)
 
 
@@ -144,9 +154,16 @@ def tension_stage(case: Case) -> Stage:
     """The ramp of the end force to ``load.tension``, from ``steps.tension``; its first step
     closes the contact pairs, so the secant predictor starts from the second."""
     steps = case.steps
-    return Stage("tension", "tension", case.load.tension, steps.tension,
-                 steps.tension / 2**steps.cuts, growth=steps.growth,
-                 extrapolate=steps.predictor, settles=True)  # fmt: skip
+    return Stage(
+        "tension",
+        "tension",
+        case.load.tension,
+        steps.tension,
+        steps.tension / 2**steps.cuts,
+        growth=steps.growth,
+        extrapolate=steps.predictor,
+        settles=True,
+    )
 
 
 def register(kind: SetupKind) -> SetupKind:
@@ -158,8 +175,9 @@ def register(kind: SetupKind) -> SetupKind:
         mine = {f.name for f in fields(getattr(kind, section))}
         owners = {f.name: "every kind" for f in fields(common) if f.name != "by_kind"}
         for other in registered():
-            owners.update(dict.fromkeys((f.name for f in fields(getattr(other, section))),
-                                        other.name))  # fmt: skip
+            owners.update(
+                dict.fromkeys((f.name for f in fields(getattr(other, section))), other.name)
+            )
         taken = sorted(mine & set(owners))
         if taken:
             raise ValueError(f"{kind.name}: settings {taken} belong to {owners[taken[0]]}")

@@ -94,8 +94,9 @@ class UniformBending(SetupKind):
         """What the run measured beside the stick–slip law (``uniform_bending_report``), with
         the wires' fields per layer (``stick_rolling``)."""
         L, zone = case.mesh.length, self.load(case).zone
-        rolling = stick_rolling(case.cable, case.load.tension, (L / 2 - zone / 2, L / 2 + zone / 2),
-                                result)  # fmt: skip
+        rolling = stick_rolling(
+            case.cable, case.load.tension, (L / 2 - zone / 2, L / 2 + zone / 2), result
+        )
         return uniform_bending_report(
             case.cable, case.load.tension, result.bending, result.slip, rolling
         )
@@ -170,9 +171,12 @@ REPORT_CURVATURES = (0.001, 0.005, 0.01, 0.05, 0.1, 0.25, 0.5)
 
 
 def uniform_bending_report(
-    cable: Cable, tension: float, bending: list[StepBending], slip: list[SlipFractions],
+    cable: Cable,
+    tension: float,
+    bending: list[StepBending],
+    slip: list[SlipFractions],
     rolling: StickRolling | None = None,
-) -> BendingReport | None:  # fmt: skip
+) -> BendingReport | None:
     """What the uniform bending test measured (its ``ZoneBending`` records at the cycle steps,
     and the slipping shares of every step), beside the stick–slip law (``analytical``), with
     the wires' fields per layer ``rolling``; None before the first cycle step."""
@@ -191,11 +195,15 @@ def uniform_bending_report(
     laws = {rule: StickSlipLaw(cable, tension, rule) for rule in ("cumulative", "own_tension")}
     order = np.argsort(k[leg])
     table = [
-        (kappa, float(np.interp(kappa, k[leg][order], M[leg][order])),
-         float(laws["cumulative"].moment(kappa)), float(laws["own_tension"].moment(kappa)))
+        (
+            kappa,
+            float(np.interp(kappa, k[leg][order], M[leg][order])),
+            float(laws["cumulative"].moment(kappa)),
+            float(laws["own_tension"].moment(kappa)),
+        )
         for kappa in REPORT_CURVATURES
         if k[0] <= kappa <= np.abs(k[leg]).max() * (1 + 1e-9)
-    ]  # fmt: skip
+    ]
     loop = masing_area = None
     # a whole cycle: the loop area against Masing's on the same curvature path
     if len(kn) > peak + 2 and abs(kn[-1]) < 1e-12 and np.min(kn) < -0.9 * np.max(kn):
@@ -238,8 +246,10 @@ def stick_rolling(
     first, largest = result.bending[0].measures, rows.get(peak.number)
     if largest is None or 0.0 in (first.curvature, largest.curvature):
         return None
-    fields = [zone_layer_fields(cells, base, zone, zb.curvature, plane)
-              for cells, zb in ((result.first_cycle, first), (result.peak, largest))]  # fmt: skip
+    fields = [
+        zone_layer_fields(cells, base, zone, zb.curvature, plane)
+        for cells, zb in ((result.first_cycle, first), (result.peak, largest))
+    ]
     slopes = [zb.moment_zone_middle / zb.curvature / law.ei_max for zb in (first, largest)]
     return StickRolling(*fields, *slopes, stick_bending_estimate(cable))
 
@@ -252,8 +262,11 @@ def slip_onset(
     by_step = {row.step: row for row in slip}
     onset = []
     for i in range(1, n_layers):
-        hits = [float(kj) for kj, row in zip(kappa, first_leg, strict=True)
-                if row.step in by_step and by_step[row.step].slipping[i - 1] >= 0.1]  # fmt: skip
+        hits = [
+            float(kj)
+            for kj, row in zip(kappa, first_leg, strict=True)
+            if row.step in by_step and by_step[row.step].slipping[i - 1] >= 0.1
+        ]
         onset.append(hits[0] if hits else np.nan)
     return onset
 
@@ -336,8 +349,13 @@ def bending_figure(case: Case, result, note: str = "") -> Path:
     span = np.abs(k).max() or 1.0
     for rule, style in (("cumulative", "-"), ("own_tension", "--")):
         law = StickSlipLaw(case.cable, case.load.tension, rule)
-        ax.plot(k, masing(law.moment, k), style, lw=1.2,
-                label=f"stick–slip law, {rule.replace('_', ' ')} (Masing)")  # fmt: skip
+        ax.plot(
+            k,
+            masing(law.moment, k),
+            style,
+            lw=1.2,
+            label=f"stick–slip law, {rule.replace('_', ' ')} (Masing)",
+        )
         ei_min, ei_max = law.ei_min, law.ei_max
     line = np.array([-span, span])
     ax.plot(line, ei_max * line, ":", color="tab:red", label=f"EI_max = {ei_max:.0f} N m²")
@@ -350,8 +368,13 @@ def bending_figure(case: Case, result, note: str = "") -> Path:
     ax.legend(fontsize=8)
     names = [f.name for f in fields(ZoneBending) if f.name.startswith("moment_")]
     for name in names:
-        ax2.plot(steps, [getattr(r, name) - r.moment_zone_middle for r in zb], ".", ms=4,
-                 label=name.removeprefix("moment_").replace("_", " "))  # fmt: skip
+        ax2.plot(
+            steps,
+            [getattr(r, name) - r.moment_zone_middle for r in zb],
+            ".",
+            ms=4,
+            label=name.removeprefix("moment_").replace("_", " "),
+        )
     ax2.set_xlabel("step")
     ax2.set_ylabel("M − M(mid-zone) (N m)")
     ax2.set_title("uniformity: five sections of the zone, end reactions")

@@ -75,8 +75,12 @@ class SaddleLoad:
     deflection: float = 0.0  # m, displacement control: midspan deflection amplitude; 0: none
     yb: float = 0.0  # m, displacement control: Y_b, peak-to-peak at [fatigue] clamp_distance
 
-    UNITS: ClassVar[dict[str, str]] = {"lateral": "N", "saddle_length": "m", "deflection": "m",
-                                       "yb": "m"}  # fmt: skip
+    UNITS: ClassVar[dict[str, str]] = {
+        "lateral": "N",
+        "saddle_length": "m",
+        "deflection": "m",
+        "yb": "m",
+    }
 
 
 @dataclass(frozen=True)
@@ -92,8 +96,14 @@ class SaddleSteps:
     yb: float = 5e-5  # m, displacement control: first yb increment of a leg
     yb_max: float = 2e-4  # m, largest yb increment
 
-    UNITS: ClassVar[dict[str, str]] = {"lateral": "N", "lateral_max": "N", "deflection": "m",
-                                       "deflection_max": "m", "yb": "m", "yb_max": "m"}  # fmt: skip
+    UNITS: ClassVar[dict[str, str]] = {
+        "lateral": "N",
+        "lateral_max": "N",
+        "deflection": "m",
+        "deflection_max": "m",
+        "yb": "m",
+        "yb_max": "m",
+    }
 
 
 class Saddle(SetupKind):
@@ -114,11 +124,15 @@ class Saddle(SetupKind):
         super().check_settings(load, steps)
         for name in DISPLACEMENTS:
             if getattr(steps, name) > getattr(steps, f"{name}_max"):
-                raise CaseError(f"[steps] {name} = {getattr(steps, name)} m exceeds {name}_max "
-                                f"= {getattr(steps, f'{name}_max')} m")  # fmt: skip
+                raise CaseError(
+                    f"[steps] {name} = {getattr(steps, name)} m exceeds {name}_max "
+                    f"= {getattr(steps, f'{name}_max')} m"
+                )
             if getattr(load, name) < 0:
-                raise CaseError(f"[load] {name} = {getattr(load, name)} m: expected a positive "
-                                "amplitude (the cycle gives the signs), or 0 for none")  # fmt: skip
+                raise CaseError(
+                    f"[load] {name} = {getattr(load, name)} m: expected a positive "
+                    "amplitude (the cycle gives the signs), or 0 for none"
+                )
         if load.control not in ("force", "displacement"):
             raise CaseError(
                 f'[load] control = {load.control!r}: expected "force" (the amplitude is the '
@@ -202,8 +216,11 @@ class Saddle(SetupKind):
                 "back at P = 0: deflection "
                 + ", ".join(f"{1e3 * s.state.deflection:+.2f} mm" for s in zero)
             )
-        return (lines + saddle_beam_lines(result)
-                + layer_pressure_lines(result, self.load_text(peak.load)))  # fmt: skip
+        return (
+            lines
+            + saddle_beam_lines(result)
+            + layer_pressure_lines(result, self.load_text(peak.load))
+        )
 
     def figures(self, case: Case, result, note: str = "") -> list[Path]:
         if not result.cycle_steps:
@@ -211,8 +228,10 @@ class Saddle(SetupKind):
         title = f"{case.cable.name}, T = {case.load.tension / 1e3:g} kN"
         peak = result.peak_step
         layers = layer_pressure_figure(result, title, self.load_text(peak.load), note)
-        return [load_deflection_figure(case, result, note),
-                midspan_bending_figure(case, result, note)] + ([layers] if layers else [])  # fmt: skip
+        return [
+            load_deflection_figure(case, result, note),
+            midspan_bending_figure(case, result, note),
+        ] + ([layers] if layers else [])
 
 
 class SaddleDisplacement(Saddle):
@@ -240,16 +259,21 @@ class SaddleDisplacement(Saddle):
     def setup(self, case: Case):
         from ...setups.saddle import SaddleTest
 
-        return partial(SaddleTest, saddle_length=self.load(case).saddle_length,
-                       direction=case.load.direction, control=self.control(case))  # fmt: skip
+        return partial(
+            SaddleTest,
+            saddle_length=self.load(case).saddle_length,
+            direction=case.load.direction,
+            control=self.control(case),
+        )
 
     def summary_lines(self, case: Case, result) -> list[str]:
         peak, cycle = result.peak_step, result.cycle_steps
         if peak is None:
             return []
         control = self.control(case)
-        where = ("midspan" if control.height is None
-                 else f"{1e3 * control.height:g} mm from the clamp")  # fmt: skip
+        where = (
+            "midspan" if control.height is None else f"{1e3 * control.height:g} mm from the clamp"
+        )
         error = max(abs(s.state.measured - s.state.prescribed) for s in cycle)
         solves = np.mean([s.state.solves for s in cycle])
         lines = [
@@ -268,8 +292,10 @@ class SaddleDisplacement(Saddle):
         )
         zero = result.unloaded_steps
         if zero:
-            lines.append(f"back at {self.parameter} = 0: saddle load "
-                         + ", ".join(f"{s.state.lateral / 1e3:+.3f} kN" for s in zero))  # fmt: skip
+            lines.append(
+                f"back at {self.parameter} = 0: saddle load "
+                + ", ".join(f"{s.state.lateral / 1e3:+.3f} kN" for s in zero)
+            )
         return lines + saddle_beam_lines(result)
 
 
@@ -295,8 +321,10 @@ def saddle_beam_lines(result) -> list[str]:
     loads = np.array([s.state.lateral for s in steps])
     ref = result.reference
     peak = int(np.argmax(np.abs(loads)))
-    lines = ["tensioned beam with the stick–slip law (clamped–clamped, Masing), deflection (mm):",
-             "  P (kN)   model   law: cumulative  own tension"]  # fmt: skip
+    lines = [
+        "tensioned beam with the stick–slip law (clamped–clamped, Masing), deflection (mm):",
+        "  P (kN)   model   law: cumulative  own tension",
+    ]
     shown = {peak} | {j for j, s in enumerate(steps) if s in result.unloaded_steps}
     shown |= {int(np.argmin(np.abs(loads[: peak + 1] - f * loads[peak]))) for f in (0.25, 0.5)}
     for j in sorted(shown):
@@ -324,12 +352,19 @@ def load_deflection_figure(case: Case, result, note: str = "") -> Path:
     ax.plot(d, P, "o-", ms=3, color="tab:blue", label="model", zorder=2)
     # the two friction rules often nearly coincide: a wide pale band under a thin dashed line
     # keeps both in sight where they do
-    for rule, style in (("cumulative", {"color": "tab:orange", "lw": 5, "alpha": 0.45,
-                                        "zorder": 1, "solid_capstyle": "round"}),
-                        ("own_tension", {"color": "k", "lw": 1.2, "ls": (0, (4, 2)),
-                                         "zorder": 3})):  # fmt: skip
-        ax.plot(1e3 * np.r_[0.0, result.reference[rule]], P, **style,
-                label=f"beam, stick–slip law ({rule.replace('_', ' ')}, Masing)")  # fmt: skip
+    for rule, style in (
+        (
+            "cumulative",
+            {"color": "tab:orange", "lw": 5, "alpha": 0.45, "zorder": 1, "solid_capstyle": "round"},
+        ),
+        ("own_tension", {"color": "k", "lw": 1.2, "ls": (0, (4, 2)), "zorder": 3}),
+    ):
+        ax.plot(
+            1e3 * np.r_[0.0, result.reference[rule]],
+            P,
+            **style,
+            label=f"beam, stick–slip law ({rule.replace('_', ' ')}, Masing)",
+        )
     ax.legend(fontsize=8)
     ax.set_xlabel("midspan deflection (mm)")
     ax.set_ylabel("lateral load P (kN)")

@@ -109,8 +109,9 @@ class TensionCycle(SetupKind):
             lookup("saddle").check_case(case)  # its saddle under the mesh
 
     def setup(self, case: Case):
-        return partial(TensionCycleTest, saddle_length=case.load.saddle_length,
-                       direction=case.load.direction)  # fmt: skip
+        return partial(
+            TensionCycleTest, saddle_length=case.load.saddle_length, direction=case.load.direction
+        )
 
     def programme(self, case: Case) -> LoadProgramme:
         """The tension, the held saddle load (if any), then the cycle of the swing."""
@@ -118,13 +119,29 @@ class TensionCycle(SetupKind):
         stages = [tension_stage(case)]
         lateral = self.load(case).fixed_lateral
         if lateral != 0:
-            stages.append(Stage("lateral", "lateral", lateral, steps.lateral,
-                                steps.lateral / 2**steps.cuts, steps.lateral_max,
-                                steps.growth, extrapolate=steps.predictor))  # fmt: skip
+            stages.append(
+                Stage(
+                    "lateral",
+                    "lateral",
+                    lateral,
+                    steps.lateral,
+                    steps.lateral / 2**steps.cuts,
+                    steps.lateral_max,
+                    steps.growth,
+                    extrapolate=steps.predictor,
+                )
+            )
         first, largest = self.step_sizes(self.steps(case))
-        stages += cycle_stages(self.parameter, self.amplitude(case), load.cycle, first, largest,
-                               cuts=steps.cuts, growth=steps.growth,
-                               predictor=steps.predictor)  # fmt: skip
+        stages += cycle_stages(
+            self.parameter,
+            self.amplitude(case),
+            load.cycle,
+            first,
+            largest,
+            cuts=steps.cuts,
+            growth=steps.growth,
+            predictor=steps.predictor,
+        )
         return LoadProgramme(tuple(stages), self.parameter)
 
     def reference(self, case: Case, result) -> TensionCycleReference | None:
@@ -141,7 +158,7 @@ class TensionCycle(SetupKind):
             end_displacement=[u0 + s.state.tension_swing * case.mesh.length / ea for s in cycle],
             stress_per_newton=[
                 lay.wire.E * np.cos(lay.alpha) ** 2 / ea for lay in case.cable.layers
-            ],  # fmt: skip
+            ],
             tension_range=float(np.ptp(forces)),
         )
 

@@ -12,6 +12,7 @@ from strand.cable.description import CableError
 from strand.cable.geometry import LINE, POINT
 from strand.cable.mesh import beam_space, input_to_block, polyline_mesh
 from strand.contact.element import ContactGroup
+from strand.contact.friction_laws import ElasticSlip, Mindlin
 from strand.contact.hertz import compliance as compliance_of
 from strand.contact.hertz import mindlin_ratio, point_coefficient
 from strand.contact.kinematics import (
@@ -21,13 +22,7 @@ from strand.contact.kinematics import (
     stencil_nodes,
     tangent_map,
 )
-from strand.contact.laws import (
-    ElasticSlip,
-    HertzLineLaw,
-    HertzPointLaw,
-    Mindlin,
-    PenaltyLaw,
-)
+from strand.contact.normal_laws import HertzLineLaw, HertzPointLaw, PenaltyLaw
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
 from strand.model.strand_contact import centreline_gaps

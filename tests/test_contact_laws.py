@@ -4,15 +4,9 @@ Hertz and Mindlin against their closed forms."""
 import numpy as np
 import pytest
 
+from strand.contact.friction_laws import Mindlin, coulomb_return, tangential_stiffness
 from strand.contact.hertz import compliance, crossed_cylinders, mindlin_ratio, point_coefficient
-from strand.contact.laws import (
-    HertzLineLaw,
-    HertzPointLaw,
-    Mindlin,
-    coulomb_return,
-    normal_force,
-    tangential_stiffness,
-)
+from strand.contact.normal_laws import HertzLineLaw, HertzPointLaw, normal_force
 
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6
 

@@ -10,7 +10,8 @@ import pytest
 from strand.app.case import CaseError, case_from_dict
 from strand.cable.description import CableError
 from strand.cable.geometry import LINE
-from strand.contact.laws import ElasticSlip, PenaltyLaw
+from strand.contact.friction_laws import ElasticSlip
+from strand.contact.normal_laws import PenaltyLaw
 from strand.model.compliances import compliances, register_compliance, unregister_compliance
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem

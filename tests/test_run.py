@@ -12,7 +12,7 @@ from strand.app.case import CaseError, load_case
 from strand.app.cli import main
 from strand.cable.description import cardinal
 from strand.contact.element import ContactGroup
-from strand.contact.laws import PenaltyLaw
+from strand.contact.normal_laws import PenaltyLaw
 from strand.model.post import bending_stiffness_bounds, fibre_model
 from strand_cases import SEVEN_WIRE
 

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
+from strand.contact.friction_laws import ElasticSlip, Mindlin
 from strand.contact.hertz import compliance, mindlin_ratio
 from strand.contact.kinematics import rotation_matrix
-from strand.contact.laws import ElasticSlip, HertzLineLaw, Mindlin, PenaltyLaw
+from strand.contact.normal_laws import HertzLineLaw, PenaltyLaw
 from strand.contact.segment import (
     SEGMENT_NORMALS,
     SegmentGroup,

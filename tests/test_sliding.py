@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from strand.contact.laws import ElasticSlip, PenaltyLaw
+from strand.contact.friction_laws import ElasticSlip
+from strand.contact.normal_laws import PenaltyLaw
 from strand.contact.sliding import SlidingGroup, SlidingWindowError
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem

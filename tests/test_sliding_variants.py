@@ -12,9 +12,11 @@ from test_restart import QUIET, assert_continues, uninterrupted_with_checkpoint
 from strand.app.case import load_case
 from strand.app.run import run_case
 from strand.contact.element import ContactGroup, centreline_slip_operator
+from strand.contact.friction_laws import ElasticSlip
 from strand.contact.group import tangential_part
+from strand.contact.hertz import hertz_mindlin
 from strand.contact.kinematics import rotation_matrix, tangent_map
-from strand.contact.laws import ElasticSlip, PenaltyLaw, hertz_mindlin
+from strand.contact.normal_laws import PenaltyLaw
 from strand.contact.sliding import SlidingGroup
 from strand.model.contact_settings import ContactSettings
 from strand.model.model import strand_stencils

@@ -6,28 +6,14 @@ The public API puts any beams of a dolfinx mesh in contact, at small sliding
 >>> from strand.contact import candidate_pairs, contact_terms, PenaltyLaw, ElasticSlip
 """
 
+from .candidates import candidate_pairs, candidate_stencils
 from .element import resolve_normal
 from .errors import ContactError
-from .laws import (
-    ElasticSlip,
-    FrictionLaw,
-    HertzLineLaw,
-    HertzPointLaw,
-    LinePenaltyLaw,
-    Mindlin,
-    NormalLaw,
-    PenaltyLaw,
-    hertz_mindlin,
-)
+from .friction_laws import ElasticSlip, FrictionLaw, Mindlin
+from .hertz import hertz_mindlin
 from .nodes import BeamNodes, beam_nodes, dof_values, locate_nodes
-from .pairs import (
-    NodePairs,
-    candidate_pairs,
-    candidate_stencils,
-    contact_terms,
-    hertz_laws,
-    node_pairs,
-)
+from .normal_laws import HertzLineLaw, HertzPointLaw, LinePenaltyLaw, NormalLaw, PenaltyLaw
+from .pairs import NodePairs, contact_terms, hertz_laws, node_pairs
 from .sliding import SlidingGroup, SlidingWindowError
 from .windows import NodeChains, sliding_terms
 

@@ -26,6 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .errors import ContactError
+from .friction_laws import FrictionLaw
 from .group import PairGroup, PairKinematics
 from .kinematics import (
     NORMALS,
@@ -35,7 +36,7 @@ from .kinematics import (
     stencil_nodes,
     tangent_map,
 )
-from .laws import FrictionLaw, NormalLaw
+from .normal_laws import NormalLaw
 
 __all__ = ["SLIP", "ContactGroup", "check_slip", "resolve_normal"]
 

@@ -28,7 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from .laws import FrictionLaw, NormalLaw
+from .friction_laws import FrictionLaw
+from .normal_laws import NormalLaw
 
 __all__ = ["ContactState", "FrictionHistory", "PairKinematics", "PairGroup", "tangential_part"]
 

@@ -16,6 +16,10 @@ contact ellipse has the semi-axes a = (6k²ℰPR/(πE′))^{1/3} along the direc
 b = (6ℰPR/(πkE′))^{1/3} across it, and the peak pressure p₀ = 3P/(2πab). Mindlin's
 initial tangential stiffness of a contact area of radius a is k_T = 8a/[(2 − ν₁)/G₁ + (2 − ν₂)/G₂]
 against the normal k_N = dP/dδ = 2aE*: their ratio depends on the materials alone.
+
+``hertz_mindlin`` builds the law objects of elastic wires from these (``HertzPointLaw``,
+``HertzLineLaw`` of ``strand.contact.normal_laws``, ``Mindlin`` of
+``strand.contact.friction_laws``).
 """
 
 from __future__ import annotations
@@ -25,6 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from .friction_laws import FrictionLaw, Mindlin
+from .normal_laws import HertzLineLaw, HertzPointLaw, NormalLaw
+
 __all__ = [
     "crossed_cylinders",
     "point_coefficient",
@@ -32,6 +39,7 @@ __all__ = [
     "mindlin_ratio",
     "contact_ellipse",
     "line_contact",
+    "hertz_mindlin",
 ]
 
 Array = npt.NDArray[np.float64]
@@ -112,3 +120,31 @@ def line_contact(r1, r2, E1, nu1, E2, nu2, line_load) -> tuple[Array, Array]:
     b = np.sqrt(4 * q * r * (compliance(E1, nu1) + compliance(E2, nu2)) / np.pi)
     p0 = np.divide(2 * q, np.pi * b, out=np.zeros_like(q), where=q > 0)
     return b, p0
+
+
+def hertz_mindlin(
+    line: bool, radius_a, radius_b, crossing_angle, tributary, *, E_a, nu_a, E_b, nu_b, mu=None
+) -> tuple[NormalLaw, FrictionLaw | None]:
+    """The laws of elastic wires in contact, from their radii (m) and moduli (Pa) alone.
+
+    Crossings: ``HertzPointLaw`` of cylinders crossing at ``crossing_angle`` (rad); line pairs:
+    ``HertzLineLaw`` over their ``tributary`` lengths (m). Friction: ``Mindlin`` with Coulomb
+    coefficients ``mu`` (None: frictionless). Values are per pair (P,) or one for all.
+    """
+    r_a = np.asarray(radius_a, float)
+    P = len(r_a)
+    E_a, nu_a, E_b, nu_b, r_b, angle, length = (
+        np.broadcast_to(np.asarray(v, float), (P,))
+        for v in (E_a, nu_a, E_b, nu_b, radius_b, crossing_angle, tributary)
+    )
+    if line:
+        law: NormalLaw = HertzLineLaw(
+            r_a, r_b, compliance(E_a, nu_a), compliance(E_b, nu_b), length
+        )
+    else:
+        law = HertzPointLaw(point_coefficient(r_a, r_b, angle, E_a, nu_a, E_b, nu_b))
+    if mu is None:
+        return law, None
+    return law, Mindlin(
+        np.broadcast_to(np.asarray(mu, float), (P,)).copy(), mindlin_ratio(E_a, nu_a, E_b, nu_b)
+    )

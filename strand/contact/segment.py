@@ -30,9 +30,10 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from .friction_laws import FrictionLaw
 from .group import PairGroup, PairKinematics
 from .kinematics import _projected_normal_gradient, skew
-from .laws import FrictionLaw, NormalLaw
+from .normal_laws import NormalLaw
 
 __all__ = ["SEGMENT_NORMALS", "SegmentGroup"]
 

@@ -16,8 +16,9 @@ first iterations and Newton diverges at 3 kN of tension). On Hermite curves the 
 gradient are continuous across nodes. Helices touch at nodes with the analytic tangents, so the
 closest points start exactly there.
 
-The same laws as the small-sliding element apply (the law objects of ``strand.contact.laws``,
-through the shared ``PairGroup``), and the same two slip measures (``slip``):
+The same laws as the small-sliding element apply (the law objects of
+``strand.contact.normal_laws`` and ``strand.contact.friction_laws``, through the shared
+``PairGroup``), and the same two slip measures (``slip``):
 
 * "surface": the relative motion of the two surface points currently in contact since the last
   converged step (translations and rotations interpolated linearly at the closest points, lever
@@ -43,9 +44,10 @@ import numpy.typing as npt
 
 from .centreline import crossing_kernel, line_kernel
 from .element import check_slip
+from .friction_laws import FrictionLaw
 from .group import PairGroup, PairKinematics
 from .kinematics import skew
-from .laws import FrictionLaw, NormalLaw
+from .normal_laws import NormalLaw
 from .sliding_slip import centreline_slip_operator
 
 __all__ = ["SlidingGroup", "SlidingWindowError"]

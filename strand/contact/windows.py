@@ -25,8 +25,9 @@ import numpy as np
 import numpy.typing as npt
 
 from .errors import ContactError
-from .laws import FrictionLaw, NormalLaw
+from .friction_laws import FrictionLaw
 from .nodes import beam_nodes
+from .normal_laws import NormalLaw
 from .pairs import NodePairs
 from .sliding import SlidingGroup
 
@@ -218,7 +219,8 @@ def _law_rows(law, rows: npt.NDArray[np.intp], n: int):
     if not is_dataclass(law):
         raise ContactError(
             f"{type(law).__name__} is split by window size: give a dataclass law (as those of "
-            "strand.contact.laws) whose per-pair values are arrays of one value per pair"
+            "strand.contact.normal_laws and friction_laws) whose per-pair values are arrays of one "
+            "value per pair"
         )
     cut = {}
     for f in fields(law):

@@ -2,9 +2,9 @@
 
 A compliance turns the wires of a set of pairs (``Wires``: radii, moduli, Coulomb coefficients,
 tributary lengths, crossing angles) and the contact settings into the pairs' normal and friction
-laws (``strand.contact.laws``). ``ContactSettings`` accepts the registered names; the strand's
-crossings, line pairs and same-layer pairs take their laws from here
-(``strand_contact.pair_laws``, ``same_layer.same_layer_laws``). Adding one::
+laws (``strand.contact.normal_laws``, ``strand.contact.friction_laws``). ``ContactSettings``
+accepts the registered names; the strand's crossings, line pairs and same-layer pairs take their
+laws from here (``strand_contact.pair_laws``, ``same_layer.same_layer_laws``). Adding one::
 
     register_compliance("mine", build, uses=("k_point", "k_line"))
 
@@ -22,7 +22,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ..contact.laws import ElasticSlip, FrictionLaw, NormalLaw, PenaltyLaw, hertz_mindlin
+from ..contact.friction_laws import ElasticSlip, FrictionLaw
+from ..contact.hertz import hertz_mindlin
+from ..contact.normal_laws import NormalLaw, PenaltyLaw
 
 __all__ = [
     "Wires",
@@ -117,7 +119,7 @@ def _penalty(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
 
 def _hertz(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
     """Hertz crossed cylinders at the crossing angle, or Hertz line contact over the tributary
-    length, and Mindlin's initial stick stiffness (``contact.laws.hertz_mindlin``)."""
+    length, and Mindlin's initial stick stiffness (``contact.hertz.hertz_mindlin``)."""
     w = wires
     return hertz_mindlin(
         w.line,

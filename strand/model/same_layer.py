@@ -19,7 +19,7 @@ at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) i
 
 Neither normal changes the gap under rigid rotations (a frozen normal closes it by d ω²/2). The
 normal law is the Hertz line law over the node's tributary length of wire (with a C¹ onset,
-``contact.laws.SmoothOnset``: these pairs start touching without load), the friction Mindlin's
+``contact.normal_laws.SmoothOnset``: these pairs start touching without load), the friction Mindlin's
 with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
 
 * ``"nominal"``: every neighbour at the layer's nominal gap, clipped at 0 (a layer whose helices
@@ -53,10 +53,11 @@ import numpy.typing as npt
 
 from ..cable.description import Layer
 from ..cable.geometry import StrandGeometry
+from ..contact.candidates import closest_on_segments
 from ..contact.element import ContactGroup
+from ..contact.friction_laws import FrictionLaw
 from ..contact.kinematics import rotation_matrix
-from ..contact.laws import FrictionLaw, NormalLaw, SmoothOnset
-from ..contact.pairs import closest_on_segments
+from ..contact.normal_laws import NormalLaw, SmoothOnset
 from ..contact.segment import SegmentGroup
 from .compliances import Wires, compliance_named
 from .partition import owned_rows

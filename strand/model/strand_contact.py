@@ -19,8 +19,9 @@ import numpy.typing as npt
 
 from ..cable.geometry import LINE, POINT, StrandGeometry
 from ..contact.element import ContactGroup
-from ..contact.laws import FrictionLaw, NormalLaw
+from ..contact.friction_laws import FrictionLaw
 from ..contact.measure import segment_distance
+from ..contact.normal_laws import NormalLaw
 from ..contact.pairs import NodePairs, contact_terms, crossing_angle
 from ..contact.sliding import SlidingGroup
 from ..contact.windows import NodeChains, SlidingWindows, chain_windows, sliding_group

@@ -1,26 +1,19 @@
-"""Contact laws as objects, evaluated for all pairs of a group at once (numpy).
+"""Normal contact laws as objects, evaluated for all pairs of a group at once (numpy).
 
-Physics only: functions of gaps, slips and histories, returning forces and their exact derivatives.
+Physics only: functions of the gaps, returning the normal forces and their exact derivatives.
 Units: m, N; stiffnesses in N/m (per pair).
 
-Normal laws give the normal force p(g) ≥ 0 (compression positive, g the gap, δ = −g the approach)
-and dp/dg; a pair counts as closed in the tangent for g ≤ 0 (pairs start at g = 0):
+A normal law gives the normal force p(g) ≥ 0 (compression positive, g the gap, δ = −g the
+approach) and dp/dg; a pair counts as closed in the tangent for g ≤ 0 (pairs start at g = 0):
 
 * ``PenaltyLaw``: p = K_N⟨−g⟩ (the seed paper's);
 * ``LinePenaltyLaw``: the same per unit length of a line contact, K_N = k ℓ over each line pair's
   tributary length ℓ (given by ``contact_terms``);
 * ``HertzPointLaw``: crossed cylinders, p = c δ^{3/2} (``strand.contact.hertz``);
-* ``HertzLineLaw``: parallel-axis cylinders, the approach of the axes under a line load.
+* ``HertzLineLaw``: parallel-axis cylinders, the approach of the axes under a line load;
+* ``SmoothOnset``: any of them made C¹ at first touch.
 
-Friction laws are Coulomb with an elastic stick branch and a radial return onto the cone. The stick
-stiffness K_T is evaluated with the normal force P₀ at the start of the step and frozen over the
-step (so that Newton stays quadratic); the trial traction t_tr = P_n t_old + K_T Δg_T (P_n = I − n⊗n
-re-projects the stored traction onto the current tangent plane) is kept when ‖t_tr‖ ≤ μp (stick),
-else scaled back to μp t_tr/‖t_tr‖ (slip). The laws differ in K_T only:
-
-* ``ElasticSlip``: K_T = μP₀/g_lim, friction reaches μP after a slip g_lim (the seed paper's);
-* ``Mindlin``: K_T = k_T/k_N × dp/dδ(P₀), Mindlin's initial tangential stiffness of the Hertz
-  contact (``strand.contact.hertz.mindlin_ratio``).
+The friction laws that go with them: ``strand.contact.friction_laws``.
 """
 
 from __future__ import annotations
@@ -32,8 +25,6 @@ from functools import cached_property
 import numpy as np
 import numpy.typing as npt
 
-from .hertz import compliance, mindlin_ratio, point_coefficient
-
 __all__ = [
     "NormalLaw",
     "PenaltyLaw",
@@ -41,21 +32,12 @@ __all__ = [
     "HertzPointLaw",
     "HertzLineLaw",
     "SmoothOnset",
-    "FrictionLaw",
-    "ElasticSlip",
-    "Mindlin",
-    "CoulombResult",
-    "FrictionTerms",
-    "coulomb_return",
     "normal_force",
-    "tangential_stiffness",
-    "hertz_mindlin",
 ]
 
 Array = npt.NDArray[np.float64]
 
 
-# -- normal laws ------------------------------------------------------------------------------------
 class NormalLaw(ABC):
     """Normal force of the pairs of one group as a function of their gaps."""
 
@@ -273,153 +255,3 @@ class SmoothOnset(NormalLaw):
             np.sqrt(2 * k0 * p / eps),
             self.law.stiffness(np.maximum(p - k0 * eps / 2, 0.0)),
         )
-
-
-# -- friction laws ----------------------------------------------------------------------------------
-@dataclass
-class CoulombResult:
-    """Frictional traction t (P, 3) and its derivatives: dt/dΔg_T (P, 3, 3) and dt/dp (P, 3)."""
-
-    traction: Array
-    d_slip: Array
-    d_pressure: Array
-    slipping: npt.NDArray[np.bool_]
-
-
-def tangential_stiffness(mu: Array, p_start: Array, g_lim: float) -> Array:
-    """K_T = μ P₀/g_lim (N/m), from the normal force P₀ at the start of the step."""
-    return mu * p_start / g_lim
-
-
-def coulomb_return(
-    t_old: Array, slip: Array, normal: Array, p: Array, mu: Array, k_t: Array
-) -> CoulombResult:
-    """Radial return for all pairs.
-
-    Args:
-        t_old: traction at the last converged step (P, 3), N.
-        slip: tangential slip increment since that step, Δg_T (P, 3), m (in the tangent plane).
-        normal: current unit normals (P, 3).
-        p: current normal force (P,), N.
-        mu: friction coefficients (P,); k_t: slip stiffnesses (P,), N/m.
-    """
-    P_n = np.eye(3) - normal[:, :, None] * normal[:, None, :]
-    trial = np.einsum("pij,pj->pi", P_n, t_old) + k_t[:, None] * slip
-    size = np.linalg.norm(trial, axis=1)
-    cap = mu * p
-    slipping = size > cap
-    safe = np.where(size > 0, size, 1.0)
-    nu = trial / safe[:, None]
-    eye = np.broadcast_to(np.eye(3), (len(p), 3, 3))
-    # stick: t = trial
-    d_slip = k_t[:, None, None] * eye
-    d_pressure = np.zeros_like(trial)
-    traction = trial.copy()
-    # slip: t = μ p ν, dt/dtrial = μp/|trial| (I − ν⊗ν)
-    s = slipping
-    if np.any(s):
-        proj = eye[s] - nu[s, :, None] * nu[s, None, :]
-        d_slip[s] = (cap[s] * k_t[s] / safe[s])[:, None, None] * proj
-        d_pressure[s] = mu[s, None] * nu[s]
-        traction[s] = cap[s, None] * nu[s]
-    return CoulombResult(traction, d_slip, d_pressure, slipping)
-
-
-@dataclass
-class FrictionTerms:
-    """What a friction law adds at an evaluation: residual (P, m) and tangent (P, m, M) (None
-    without the Jacobian), traction t (P, 3), N, slipping flags, the slip Δg_T (P, 3), m, of the
-    surface points since the last converged step, and the stick stiffness K_T (P,), N/m."""
-
-    residual: Array
-    tangent: Array | None
-    traction: Array
-    slipping: npt.NDArray[np.bool_]
-    slip: Array
-    stiffness: Array
-
-
-@dataclass(frozen=True)
-class FrictionLaw(ABC):
-    """Coulomb friction (coefficients ``mu`` (P,)) with an elastic stick branch."""
-
-    mu: Array
-
-    @property
-    def active(self) -> bool:
-        return bool(np.any(np.asarray(self.mu) > 0))
-
-    @abstractmethod
-    def stiffness(self, p_start: Array, normal: NormalLaw) -> Array:
-        """K_T (P,) in N/m from the normal forces at the start of the step."""
-
-    def terms(
-        self, S, dq, p, dp_dq, p_old, t_old, n_old, *, normal: NormalLaw, jacobian: bool
-    ) -> FrictionTerms:
-        """Friction of all pairs on a slip operator S (P, 3, m): Δg_T = S Δq.
-
-        Returns the residual Sᵀt (P, m), the tangent Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗∂p/∂q (P, m, M)
-        over all M dofs of the pair's layout (``dp_dq`` (P, M); None without ``jacobian``), the
-        traction, the slipping flags (pairs at the cap with a positive normal force), the slip
-        Δg_T and the stick stiffness K_T of the step.
-        """
-        mu = np.broadcast_to(np.asarray(self.mu, float), p.shape)
-        slip = np.einsum("pij,pj->pi", S, dq)
-        k_t = self.stiffness(p_old, normal)
-        ret = coulomb_return(t_old, slip, n_old, p, mu, k_t)
-        f = np.einsum("pij,pi->pj", S, ret.traction)
-        K = None
-        if jacobian:
-            St = S.transpose(0, 2, 1)
-            K = np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq)
-            K[:, :, : S.shape[2]] += St @ ret.d_slip @ S
-        return FrictionTerms(f, K, ret.traction, ret.slipping & (p > 0), slip, k_t)
-
-
-@dataclass(frozen=True)
-class ElasticSlip(FrictionLaw):
-    """K_T = μP₀/g_lim: friction reaches μP after an elastic slip ``g_lim`` (m)."""
-
-    g_lim: float = 5e-6
-
-    def stiffness(self, p_start, normal):
-        return tangential_stiffness(np.asarray(self.mu, float), p_start, self.g_lim)
-
-
-@dataclass(frozen=True)
-class Mindlin(FrictionLaw):
-    """K_T = ``ratio`` × dp/dδ(P₀): Mindlin's initial tangential stiffness of a Hertz contact,
-    ``ratio`` = k_T/k_N per pair (``hertz.mindlin_ratio``)."""
-
-    ratio: Array | float
-
-    def stiffness(self, p_start, normal):
-        return self.ratio * normal.stiffness(p_start) * (p_start > 0)
-
-
-def hertz_mindlin(
-    line: bool, radius_a, radius_b, crossing_angle, tributary, *, E_a, nu_a, E_b, nu_b, mu=None
-) -> tuple[NormalLaw, FrictionLaw | None]:
-    """The laws of elastic wires in contact, from their radii (m) and moduli (Pa) alone.
-
-    Crossings: ``HertzPointLaw`` of cylinders crossing at ``crossing_angle`` (rad); line pairs:
-    ``HertzLineLaw`` over their ``tributary`` lengths (m). Friction: ``Mindlin`` with Coulomb
-    coefficients ``mu`` (None: frictionless). Values are per pair (P,) or one for all.
-    """
-    r_a = np.asarray(radius_a, float)
-    P = len(r_a)
-    E_a, nu_a, E_b, nu_b, r_b, angle, length = (
-        np.broadcast_to(np.asarray(v, float), (P,))
-        for v in (E_a, nu_a, E_b, nu_b, radius_b, crossing_angle, tributary)
-    )
-    if line:
-        law: NormalLaw = HertzLineLaw(
-            r_a, r_b, compliance(E_a, nu_a), compliance(E_b, nu_b), length
-        )
-    else:
-        law = HertzPointLaw(point_coefficient(r_a, r_b, angle, E_a, nu_a, E_b, nu_b))
-    if mu is None:
-        return law, None
-    return law, Mindlin(
-        np.broadcast_to(np.asarray(mu, float), (P,)).copy(), mindlin_ratio(E_a, nu_a, E_b, nu_b)
-    )

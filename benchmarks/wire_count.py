@@ -132,7 +132,8 @@ def breaking_strength(wires: int) -> float:
 def case_for(wires: int, length: float, settings: list[str]):
     """The case of the strand of ``wires`` over ``length`` (m), its loads scaled by its MBS;
     ``settings`` (``section.key=value``) over them."""
-    from strand.app.case import case_from_dict, merge_settings, parse_settings
+    from strand.app.case import case_from_dict
+    from strand.app.case_overrides import merge_settings, parse_settings
 
     mbs = breaking_strength(wires)
     tension = TENSION_SHARE * mbs

@@ -104,21 +104,19 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               #   writes Miner's sum per wire and pair: spectrum.csv, spectrum.txt
 
 Unknown keys and bad values are errors naming the file and the key, raised before any computing:
-this module checks each value alone, ``strand.app.checks`` the settings against one another.
+this module checks each value alone, ``strand.app.checks`` the settings against one another. The
+command line's ``--set`` overrides are read by ``strand.app.case_overrides``.
 """
 
 from __future__ import annotations
 
 import math
-import re
 import tomllib
 from dataclasses import fields, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..cable.description import (
-    CORE_KEYS,
-    LAYER_KEYS,
     Cable,
     CableError,
     cable_from_dict,
@@ -127,20 +125,17 @@ from ..cable.description import (
     load_cable,
 )
 from ..cable.input_file import read_text
+from .case_overrides import merge_settings, parse_settings
 from .case_toml import cable_table
 from .errors import CaseError
 from .settings import KIND_SECTIONS, SECTIONS, Case, unit_of
 
+if TYPE_CHECKING:
+    from .kinds import SetupKind
+
 #: ``Case`` (``strand.app.settings``) and ``CaseError`` (``strand.app.errors``) are importable
 #: from here too
-__all__ = [
-    "load_case",
-    "case_from_dict",
-    "check_loads_given",
-    "parse_settings",
-    "merge_settings",
-    "CableEdits",
-]
+__all__ = ["load_case", "case_from_dict", "check_loads_given"]
 
 BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
 
@@ -297,16 +292,14 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
         raise CaseError(f"{source}: unknown setting(s) {unknown}; allowed: {allowed}")
     cable = _cable(data.get("cable", "cardinal"), base, source)
     sections = {name: _section(name, data.get(name, {}), source) for name in SECTIONS}
-    case = checked_case(Case(cable, **sections, source=source))
-    return replace(case, unset_loads=_unset_loads(data, case))
+    case, kind = checked_case(Case(cable, **sections, source=source))
+    return replace(case, unset_loads=_unset_loads(data, case, kind))
 
 
-def _unset_loads(data: dict, case: Case) -> tuple[str, ...]:
-    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude unless the
-    cycle stays at zero or a sweep gives the amplitudes) that ``data`` leaves out, for a cable
-    other than Cardinal, whose defaults they are."""
-    from . import kinds
-
+def _unset_loads(data: dict, case: Case, kind: SetupKind) -> tuple[str, ...]:
+    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude, ``kind``'s
+    parameter, unless the cycle stays at zero or a sweep gives the amplitudes) that ``data``
+    leaves out, for a cable other than Cardinal, whose defaults they are."""
     spec = data.get("cable", "cardinal")
     if isinstance(spec, tuple):  # a cable edited on the command line: the loads of the one named
         spec = spec[0]
@@ -314,7 +307,7 @@ def _unset_loads(data: dict, case: Case) -> tuple[str, ...]:
         return ()
     needed = ["tension"]
     if any(case.load.cycle) and not case.load.sweep:
-        needed.append(kinds.kind_of(case).parameter)
+        needed.append(kind.parameter)
     given = data.get("load", {})
     return tuple(k for k in needed if k not in given)
 
@@ -329,111 +322,6 @@ def check_loads_given(case: Case) -> None:
             f"{case.cable.name!r}: the defaults ({defaults}, in SI units) are the built-in "
             "Cardinal's"
         )
-
-
-class CableEdits(list):
-    """The command line's edits of the case's cable (``--set cable.core.nu=0.28``,
-    ``--set cable.layer.2.E=60e9``, ``--set cable.name=...``), in order: (path, value, item),
-    the path ("core", key), ("layer", n, key) with n from 1 (the innermost helical layer), or
-    ("name",)."""
-
-    def applied(self, table: dict) -> dict:
-        """A copy of the cable's ``table`` (``case_toml.cable_table``'s form) with the edits."""
-        out = {**table, "core": dict(table["core"]), "layer": [dict(t) for t in table["layer"]]}
-        for path, value, item in self:
-            if path[0] == "name":
-                out["name"] = value
-            elif path[0] == "core":
-                out["core"][path[1]] = value
-            else:
-                n = len(out["layer"])
-                if not 1 <= path[1] <= n:
-                    raise CaseError(
-                        f"--set {item!r}: the cable {out['name']!r} has layers 1 to "
-                        f"{n} (layer 1 the innermost helical one)"
-                    )
-                out["layer"][path[1] - 1][path[2]] = value
-        return out
-
-
-_CABLE_KEYS = "cable.name, cable.core.<key>, cable.layer.<n>.<key>"
-
-
-def _cable_path(item: str, parts: list[str]) -> tuple:
-    """The path in the cable of ``--set cable.<parts>=...`` (``CableEdits``), its keys checked."""
-    table, *rest = parts
-    if table == "name" and not rest:
-        return ("name",)
-    if table == "core" and len(rest) == 1:
-        if rest[0] not in CORE_KEYS:
-            raise CaseError(
-                f"--set {item!r}: the cable's core has no key {rest[0]!r}; valid: "
-                f"{', '.join(sorted(CORE_KEYS))}"
-            )
-        return ("core", rest[0])
-    if table == "layer" and len(rest) == 2:
-        if not rest[0].isdigit() or int(rest[0]) < 1:
-            raise CaseError(
-                f"--set {item!r}: expected a layer number 1, 2, … after cable.layer "
-                "(1: the innermost helical layer)"
-            )
-        if rest[1] not in LAYER_KEYS:
-            raise CaseError(
-                f"--set {item!r}: a cable layer has no key {rest[1]!r}; valid: "
-                f"{', '.join(sorted(LAYER_KEYS))}"
-            )
-        return ("layer", int(rest[0]), rest[1])
-    raise CaseError(f"--set {item!r}: expected cable=<name or file> or one of {_CABLE_KEYS}")
-
-
-def parse_settings(items: list[str]) -> dict:
-    """``["section.key=value", ...]`` (the command line's ``--set``) as a nested dict of case
-    settings; values are read as TOML (``2e-3``, ``true``, ``[1.0, 0.0]``), or else as strings.
-    Keys inside the cable (``cable.core.nu``, ``cable.layer.1.E`` or ``cable.layer[1].E``,
-    ``cable.name``) are ``CableEdits`` under ``"cable"``."""
-    out: dict = {}
-    for item in items:
-        name, eq, text = item.partition("=")
-        parts = re.sub(r"\[(\w+)\]", r".\1", name.strip()).split(".")
-        if not eq or not all(parts) or (len(parts) > 2 and parts[0] != "cable"):
-            raise CaseError(f"--set {item!r}: expected section.key=value, e.g. mesh.h_max=2e-3")
-        try:
-            value = tomllib.loads(f"v = {text.strip()}")["v"]
-        except tomllib.TOMLDecodeError:
-            value = text.strip()
-        if parts[0] == "cable" and len(parts) > 1:
-            edits = out.setdefault("cable", CableEdits())
-            if not isinstance(edits, CableEdits):
-                raise CaseError(
-                    f"--set {item!r}: give the whole cable (--set cable=...) or edit "
-                    "the case's, not both"
-                )
-            edits.append((_cable_path(item, parts[1:]), value, item))
-        elif len(parts) == 2:
-            out.setdefault(parts[0], {})[parts[1]] = value
-        elif isinstance(out.get(name.strip()), CableEdits):
-            raise CaseError(
-                f"--set {item!r}: give the whole cable (--set cable=...) or edit the "
-                "case's, not both"
-            )
-        else:
-            out[name.strip()] = value
-    return out
-
-
-def merge_settings(data: dict, overrides: dict) -> dict:
-    """A case file's tables ``data`` with the ``overrides`` of ``parse_settings``: each
-    section's keys over the file's; ``CableEdits`` applied to the file's cable (built-in,
-    file or table; Cardinal by default) when the case is read."""
-    merged = dict(data)
-    for k, v in overrides.items():
-        if isinstance(v, CableEdits):
-            merged[k] = (merged.get(k, "cardinal"), v)
-        elif isinstance(v, dict) and isinstance(merged.get(k), dict):
-            merged[k] = {**merged[k], **v}
-        else:
-            merged[k] = v
-    return merged
 
 
 def load_case(path: str | Path | None = None, settings: list[str] = ()) -> Case:

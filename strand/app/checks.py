@@ -11,6 +11,7 @@ above the set-up kinds (``strand.app.kinds``), whose checks it runs, and below
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from ..cable.description import Cable
 from ..fatigue.sn import SN_CURVES
@@ -18,6 +19,9 @@ from ..solver.convergence import ITERATIONS
 from . import kinds
 from .errors import CaseError
 from .settings import LINE_SEARCHES, STEP_CONTROLS, Case, FatigueSettings
+
+if TYPE_CHECKING:
+    from .kinds import SetupKind
 
 __all__ = ["checked_case", "h_max_range"]
 
@@ -38,19 +42,21 @@ def h_max_range(cable: Cable) -> tuple[float, float]:
     return thinnest / _FINEST, shortest / _TURN
 
 
-def checked_case(case: Case) -> Case:
+def checked_case(case: Case) -> tuple[Case, SetupKind]:
     """``case`` with the amplitudes of a ``[fatigue] spectrum`` as its ``[load] sweep``, every
-    setting checked against the others and the cable (``CaseError`` naming ``case.source``)."""
+    setting checked against the others and the cable (``CaseError`` naming ``case.source``),
+    and its set-up kind (``kinds.kind_of``), resolved once here for the checks and the reader."""
     try:
         case = _spectrum_sweep(case)
-        _check_steps_and_load(case)
+        kind = _check_steps_and_load(case)
         _check_fatigue(case.fatigue, case.cable)
     except CaseError as e:
         raise CaseError(f"{case.source}: {e}") from None
-    return case
+    return case, kind
 
 
-def _check_steps_and_load(case: Case) -> None:
+def _check_steps_and_load(case: Case) -> SetupKind:
+    """The checks of the load steps, the mesh and the loads; the case's set-up kind."""
     steps, load, mesh = case.steps, case.load, case.mesh
     if steps.line_search not in LINE_SEARCHES:
         raise CaseError(
@@ -78,12 +84,14 @@ def _check_steps_and_load(case: Case) -> None:
             f"cable: from the thinnest wire's diameter / {_FINEST} (a beam resolves nothing "
             f"shorter) to the shortest lay length / {_TURN} (a helix needs {_TURN} elements a turn)"
         )
-    kinds.kind_of(case).check_case(case)
+    kind = kinds.kind_of(case)
+    kind.check_case(case)
     if load.sweep and not any(load.cycle):
         raise CaseError(
             f"[load] sweep = {list(load.sweep)} needs a cycle with a target other than 0 "
             f"(cycle = {list(load.cycle)} stays at zero load)"
         )
+    return kind
 
 
 def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:

@@ -20,7 +20,8 @@ from pathlib import Path
 from harness import stamp
 
 from strand.app.fatigue.recorders import PairHistory, WireSectionHistory
-from strand.app.recorders import AxialForceTable, FieldSeries, RunStep, StepContext
+from strand.app.recorders import AxialForceTable, FieldSeries
+from strand.app.step_records import RunStep, StepContext
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings

@@ -17,9 +17,9 @@ from .case import check_loads_given
 from .case_toml import case_toml
 from .folder import RUN_MARKER, check_results_folder, prepare_results_folder
 from .kinds import SetupKind, kind_of
-from .recorders import RunStep
 from .run_result import Start
 from .settings import Case
+from .step_records import RunStep
 
 __all__ = [
     "settings_text",

@@ -8,7 +8,7 @@ registered (a ``make`` returns None where the case does not ask for its output);
     register_output("max_deflection", MaxDeflection,
                     files={"max_deflection.txt": "the largest deflection, m"})
 
-where ``MaxDeflection(run)`` is a recorder (``recorders.Recorder``: ``record(ctx)`` at every
+where ``MaxDeflection(run)`` is a recorder (``step_records.Recorder``: ``record(ctx)`` at every
 converged step, ``close()`` at the end) writing into ``run.folder``.
 """
 
@@ -28,11 +28,11 @@ from .recorders import (
     CheckpointRecorder,
     FieldSeries,
     KeyStates,
-    Recorder,
     SlipTable,
     SmallSlidingMonitor,
     StepTable,
 )
+from .step_records import Recorder
 
 __all__ = ["Run", "Output", "register_output", "unregister_output", "registered_outputs"]
 

@@ -1,31 +1,25 @@
 """Per-step recorders: each writes one output of a run as the run goes, from typed step records.
 
-After every converged step the runner builds a ``StepContext`` (the ``RunStep`` record, the
-problem, and the cell results computed once, on demand) and hands it to each recorder. A recorder
-opens its file when built, appends and flushes at every step (a failed or interrupted run keeps
-every step written so far), and closes in ``close``. Units: SI, named in the column headers.
+After every converged step the runner builds a ``StepContext`` (``strand.app.step_records``: the
+``RunStep`` record, the problem, and the cell results computed once, on demand) and hands it to
+each recorder. A recorder opens its file when built, appends and flushes at every step (a failed
+or interrupted run keeps every step written so far), and closes in ``close``. Units: SI, named in
+the column headers.
 """
 
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
-from ..model.pair_results import PairResults
 from ..model.parallel import root_open
 from ..setups.base import columns, values
+from .step_records import SlipFractions, StepBending, StepContext
 
 __all__ = [
-    "RunStep",
-    "StepBending",
-    "SlipFractions",
-    "StepContext",
-    "Recorder",
     "StepTable",
     "AxialForceTable",
     "BendingTable",
@@ -36,103 +30,6 @@ __all__ = [
     "SmallSlidingMonitor",
     "CheckpointRecorder",
 ]
-
-
-@dataclass(frozen=True)
-class RunStep:
-    """One converged step of a run: its number (from 1), stage, the parameter it ramps and that
-    parameter's value, the programme time (``LoadProgramme.time``), Newton's effort (iterations,
-    step cuts before it, wall time s, final residual norm N), the set-up's measures (``state``)
-    and the iterations of the failed attempts before it."""
-
-    number: int
-    stage: str
-    parameter: str
-    load: float
-    time: float
-    iterations: int
-    cuts: int
-    seconds: float
-    residual: float
-    state: Any
-    failed_iterations: int = 0
-    factorisations: int = 0
-
-
-@dataclass(frozen=True)
-class StepBending:
-    """The set-up's bending measures at one step of the cycle (a row of
-    ``moment_curvature.csv``): the step's number and the ``TestSetup.moment_curvature`` record."""
-
-    step: int
-    measures: Any
-
-
-@dataclass(frozen=True)
-class SlipFractions:
-    """A row of ``slip.csv``: the step's number, the cycle parameter's value there (its unit),
-    and per interface i|i+1 the fraction of its pairs in the measuring zone that slip."""
-
-    step: int
-    load: float
-    slipping: npt.NDArray[np.float64]
-
-
-@dataclass
-class StepContext:
-    """What recorders see at a step: the record, the problem, and the cell results (lazy)."""
-
-    step: RunStep
-    problem: Any
-    cycle: bool  # a step of the cycle (not of the tensioning)
-    _cells: Any = field(default=None, repr=False)
-    _evaluate: Any = field(default=None, repr=False)
-
-    _residual: Any = field(default=None, repr=False)
-    _pairs: Any = field(default=None, repr=False)
-    #: where the run stands in its programme (``programme.Position``), for checkpoints
-    position: Any = None
-    _checkpoint: Any = field(default=None, repr=False)
-
-    @property
-    def checkpoint(self):
-        """The state at this step as a ``checkpoint.Checkpoint`` (captured once; collective)."""
-        if self._checkpoint is None:
-            from ..model.checkpoint import capture
-
-            self._checkpoint = capture(
-                self.problem, self.step.number, self.step.time, self.position, self.residual
-            )
-        return self._checkpoint
-
-    @property
-    def pairs(self) -> PairResults:
-        """The model's ``pair_results()`` at this step (computed once)."""
-        if self._pairs is None:
-            self._pairs = self.problem.model.pair_results()
-        return self._pairs
-
-    @property
-    def cells(self):
-        """``post.CellResults`` at this step (computed once)."""
-        if self._cells is None:
-            self._cells = self._evaluate()
-        return self._cells
-
-    @property
-    def residual(self):
-        """Unconstrained residual (N, 6) at this step, in the geometry's point order: the
-        reactions at supports."""
-        if self._residual is None:
-            residual = self.problem.solver.unconstrained_residual()
-            self._residual = self.problem.model.gather_nodes(residual)
-        return self._residual
-
-
-class Recorder(Protocol):
-    def record(self, ctx: StepContext) -> None: ...
-
-    def close(self) -> None: ...
 
 
 class _CsvFile:

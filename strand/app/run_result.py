@@ -12,7 +12,7 @@ from typing import Any
 from ..model.pair_results import PairResults
 from ..model.post import CellResults
 from ..model.programme import Position
-from .recorders import RunStep, SlipFractions, StepBending
+from .step_records import RunStep, SlipFractions, StepBending
 
 __all__ = ["RunResult", "Start"]
 

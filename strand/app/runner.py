@@ -23,18 +23,11 @@ from .build import step_control
 from .fatigue.recorders import PairHistory, WireSectionHistory
 from .kinds import SetupKind, kind_of
 from .outputs import Run, registered_outputs
-from .recorders import (
-    BendingTable,
-    KeyStates,
-    Recorder,
-    RunStep,
-    SlipTable,
-    StepContext,
-    StepTable,
-)
+from .recorders import BendingTable, KeyStates, SlipTable, StepTable
 from .run_files import write_folder_readme
 from .run_result import RunResult, Start
 from .settings import Case
+from .step_records import Recorder, RunStep, StepContext
 from .summary import summarize, wire_stress_line, yield_warnings
 
 __all__ = ["run_programme_with_outputs", "Recording", "Progress", "run_fatigue_report"]

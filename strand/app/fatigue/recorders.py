@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..recorders import RunStep, StepContext
+from ..step_records import RunStep, StepContext
 
 __all__ = ["PairHistory", "WireSectionHistory"]
 

@@ -25,8 +25,8 @@ from ...model.post import LayerFields
 from ...setups.bending import ZoneBending
 from ..errors import CaseError
 from ..layer_report import layer_pressure_figure, layer_pressure_lines
-from ..recorders import SlipFractions, StepBending
 from ..settings import Case
+from ..step_records import SlipFractions, StepBending
 from .base import SetupKind
 
 __all__ = [

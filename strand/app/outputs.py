@@ -1,9 +1,11 @@
-"""The registry of a run's recorded outputs: each a name, how to make its recorder from the
-run (``Run``) and the files it writes, with what each holds (the folder's ``README.txt``).
+"""The registry of a run's outputs: each a name, how to make its recorder from the run (``Run``)
+and the files it writes, with what each holds (the folder's ``README.txt``).
 
 ``runner.case_recorders`` makes the recorders of every registered output, in the order
 registered (a ``make`` returns None where the case does not ask for its output); the folder's
-``README.txt`` describes the files from here (``run_files.outputs``). Adding an output file::
+``README.txt`` describes the files from here (``run_files.outputs``), those of the outputs the
+run writes itself at its end too (the case, the summary, the fatigue report and the figures:
+registered without ``make``). Adding an output file::
 
     register_output("max_deflection", MaxDeflection,
                     files={"max_deflection.txt": "the largest deflection, m"})
@@ -62,19 +64,21 @@ Make = Callable[[Run], "Recorder | list[Recorder] | None"]
 
 @dataclass(frozen=True)
 class Output:
-    """A registered output: its name, ``make`` and the ``files`` it writes (name → what)."""
+    """A registered output: its name, ``make`` (None: no recorder, the run writes the files
+    itself) and the ``files`` it writes (name → what)."""
 
     name: str
-    make: Make
+    make: Make | None
     files: dict[str, str]
 
 
 _OUTPUTS: dict[str, Output] = {}
 
 
-def register_output(name: str, make: Make, *, files: dict[str, str] | None = None) -> Output:
+def register_output(name: str, make: Make | None, *, files: dict[str, str] | None = None) -> Output:
     """Record the output ``name`` in every run: ``make(run)`` (``Run``) gives its recorder(s)
-    or None; ``files``: the files they write, each with what it holds (``README.txt``)."""
+    or None (None for ``make``: the run writes the files itself); ``files``: the files they
+    write, each with what it holds (``README.txt``)."""
     _OUTPUTS[name] = Output(name, make, dict(files or {}))
     return _OUTPUTS[name]
 
@@ -100,6 +104,53 @@ def _fatigue(run: Run) -> list[Recorder] | None:
     ]
 
 
+# the files a run writes itself, outside its recorders (the set-up kind, the settings and the
+# outcome decide which are there)
+register_output(
+    "case",
+    None,
+    files={
+        "case.toml": "the whole case of the run, every setting and the cable written out, with "
+        "the strand version: `strand run case.toml --out <new folder>` runs it again",
+        "README.txt": "this list",
+    },
+)
+register_output(
+    "summary",
+    None,
+    files={
+        "summary.txt": "the outcome, effort, the tensioned state against the fibre model, the "
+        "set-up's own results and any warning",
+    },
+)
+register_output(
+    "fatigue_report",
+    None,
+    files={
+        "fatigue.txt": "the fatigue report: stress ranges, S-N damage, fretting",
+        "crossings.csv": "fatigue: per contact pair, the worst cycle's slip amplitude and forces",
+        "wire_stresses.csv": "fatigue: per element, the surface stresses at its point of largest "
+        "stress range (range, mean, peak) and their damage",
+        "wires.csv": "fatigue: per wire, the largest stress range and its damage",
+    },
+)
+register_output(
+    "figures",
+    None,
+    files={
+        "load_deflection.png": "figure: load against deflection over the cycle",
+        "moment_curvature.png": "figure: bending moment against curvature",
+        "axial_force_sectors.png": "figure: wire axial forces per layer and sector",
+        "axial_force_change.png": "figure: change of wire axial forces over the cycle",
+        "deformed_axial_force.png": "figure: the deformed strand coloured by axial force "
+        "(displacements magnified, factor in the title)",
+        "fretting_map.png": "figure: the contact pairs that slid, per interface",
+        "stress_range.png": "figure: stress ranges against the S-N curve",
+        "layer_pressure.png": "figure: per layer, its pressure on the crossings below, its "
+        "same-layer ring's share and the fibre model, tensioned and at the peak",
+    },
+)
+# the recorders' outputs
 register_output(
     "steps",
     lambda run: StepTable(run.folder, run.problem.setup.state_type, ReactionGauge(run.problem)),

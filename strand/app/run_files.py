@@ -10,44 +10,16 @@ from pathlib import Path
 
 from .outputs import registered_outputs
 
-__all__ = ["OUTPUTS", "OUTPUTS_REFERENCE", "outputs", "folder_readme", "write_folder_readme"]
+__all__ = ["OUTPUTS_REFERENCE", "outputs", "folder_readme", "write_folder_readme"]
 
 #: where every file, column and unit is described
 OUTPUTS_REFERENCE = "docs/outputs.md"
 
-#: what each file a run writes outside its recorders holds (the set-up kind, the settings and the
-#: outcome decide which are there); the recorders' files: ``outputs``
-OUTPUTS = {
-    "case.toml": "the whole case of the run, every setting and the cable written out, with the "
-    "strand version: `strand run case.toml --out <new folder>` runs it again",
-    "README.txt": "this list",
-    "summary.txt": "the outcome, effort, the tensioned state against the fibre model, the "
-    "set-up's own results and any warning",
-    "fatigue.txt": "the fatigue report: stress ranges, S-N damage, fretting",
-    "crossings.csv": "fatigue: per contact pair, the worst cycle's slip amplitude and forces",
-    "wire_stresses.csv": "fatigue: per element, the surface stresses at its point of largest "
-    "stress range (range, mean, peak) and their damage",
-    "wires.csv": "fatigue: per wire, the largest stress range and its damage",
-    "load_deflection.png": "figure: load against deflection over the cycle",
-    "moment_curvature.png": "figure: bending moment against curvature",
-    "axial_force_sectors.png": "figure: wire axial forces per layer and sector",
-    "axial_force_change.png": "figure: change of wire axial forces over the cycle",
-    "deformed_axial_force.png": "figure: the deformed strand coloured by axial force "
-    "(displacements magnified, factor in the title)",
-    "fretting_map.png": "figure: the contact pairs that slid, per interface",
-    "stress_range.png": "figure: stress ranges against the S-N curve",
-    "layer_pressure.png": "figure: per layer, its pressure on the crossings below, its "
-    "same-layer ring's share and the fibre model, tensioned and at the peak",
-}
-
 
 def outputs() -> dict[str, str]:
-    """What each file a run may write holds: ``OUTPUTS`` and the files of every registered
-    output (``strand.app.outputs``)."""
-    files = dict(OUTPUTS)
-    for output in registered_outputs():
-        files.update(output.files)
-    return files
+    """What each file a run may write holds: the files of every registered output
+    (``strand.app.outputs``)."""
+    return {name: what for output in registered_outputs() for name, what in output.files.items()}
 
 
 def folder_readme(folder: str | Path) -> str:

@@ -20,7 +20,6 @@ from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
-from .fatigue.recorders import PairHistory, WireSectionHistory
 from .kinds import SetupKind, kind_of
 from .outputs import Run, registered_outputs
 from .recorders import BendingTable, KeyStates, SlipTable, StepTable
@@ -77,11 +76,11 @@ def case_recorders(
     *,
     warnings: list[str],
     fresh: bool = True,
-) -> list[Recorder]:
-    """The recorders of the registered outputs (``outputs``) the case's settings ask for, in
-    the order registered, writing into ``folder``; ``parameter``: the cycle's load parameter;
-    ``fresh``: the run starts from the unloaded strand (its field
-    series opens with it at t = 0), not from a restart or a sweep's tensioned state."""
+) -> dict[str, list[Recorder]]:
+    """The recorders of the registered outputs (``outputs``) the case's settings ask for, by
+    output name in the order registered, writing into ``folder``; ``parameter``: the cycle's
+    load parameter; ``fresh``: the run starts from the unloaded strand (its field series opens
+    with it at t = 0), not from a restart or a sweep's tensioned state."""
     run = Run(
         case=case,
         problem=problem,
@@ -94,11 +93,11 @@ def case_recorders(
         warnings=warnings,
         fresh=fresh,
     )
-    recorders: list[Recorder] = []
+    recorders: dict[str, list[Recorder]] = {}
     for output in registered_outputs():
-        made = output.make(run)
+        made = output.make(run) if output.make is not None else None
         if made is not None:
-            recorders += made if isinstance(made, list) else [made]
+            recorders[output.name] = made if isinstance(made, list) else [made]
     return recorders
 
 
@@ -128,7 +127,7 @@ class Recording:
         self.case, self.kind, self.stream = case, kind, stream
         self.evaluator = CellEvaluator(problem.model)
         self.key_states = KeyStates()
-        self.recorders = case_recorders(
+        self.outputs = case_recorders(
             case,
             problem,
             result.folder,
@@ -139,9 +138,10 @@ class Recording:
             warnings=result.warnings,
             fresh=fresh,
         )
-        self.bending = next(r for r in self.recorders if isinstance(r, BendingTable))
-        self.slip = next(r for r in self.recorders if isinstance(r, SlipTable))
-        self.steps_table = next(r for r in self.recorders if isinstance(r, StepTable))
+        self.recorders = [r for made in self.outputs.values() for r in made]
+        self.bending: BendingTable = self.recorder("moment_curvature")
+        self.slip: SlipTable = self.recorder("slip")
+        self.steps_table: StepTable = self.recorder("steps")
         units = {"tension": ("kN", 1e3), kind.parameter: kind.progress_unit}
         self.progress = Progress(programme, units, stream)
         self.seconds = 0.0  # wall time of all recorders together
@@ -212,11 +212,18 @@ class Recording:
         for stage in self.programme.stages[: start.position.stage]:
             self.progress.previous[stage.parameter] = stage.target
 
-    def seconds_of(self, *types: type) -> float:
-        """Wall time (s) of the recorders of ``types`` over the run."""
+    def recorder(self, output: str) -> Recorder:
+        """The recorder of the registered output ``output`` (``outputs``), one that makes one."""
+        (recorder,) = self.outputs[output]
+        return recorder
+
+    def seconds_of(self, *outputs: str) -> float:
+        """Wall time (s) of the recorders of the registered ``outputs`` over the run."""
         timings = self.result.output_timings
         return sum(
-            timings.get(type(r).__name__, 0.0) for r in self.recorders if isinstance(r, types)
+            timings.get(type(r).__name__, 0.0)
+            for name in outputs
+            for r in self.outputs.get(name, [])
         )
 
     def close(self) -> None:
@@ -312,7 +319,7 @@ def _report_and_figures(
     """The fatigue report (with a cycle and the histories) and the figures, on rank 0."""
     report = None
     if case.fatigue.outputs and len(result.cycle_steps):
-        seconds = recording.seconds_of(PairHistory, WireSectionHistory)
+        seconds = recording.seconds_of("fatigue_histories")
         report = run_fatigue_report(case, result, seconds, stream, clamp=recording.kind.clamp)
         result.fatigue = report
     if case.output.plots:

@@ -15,8 +15,6 @@ MAX_POSITIONAL = 7
 #: records (dataclasses whose fields are all positional) that take more, made keyword-only one by
 #: one: a record may leave this list, never join it (their count here is what they take now)
 RECORDS_TO_CUT = {
-    "strand/app/fatigue/findings.py:FatigueReport": 10,
-    "strand/app/fatigue/spectrum.py:SpectrumReport": 12,
     "strand/app/kinds/bending.py:BendingReport": 11,
     "strand/app/step_records.py:RunStep": 12,
     "strand/app/step_records.py:StepContext": 9,

@@ -167,10 +167,12 @@ def test_hot_spots_and_damage_are_split_by_zone(seven_wire_run):
     r = fatigue_report(seven_wire_run, cable, 10e3, FatigueSettings(end_zone=0.02))
     sections = read_history(seven_wire_run / "wire_sections.h5")
     z = sections.static["z"]
-    np.testing.assert_array_equal(r.elements["clamp"], in_clamp_zone(z, 0.1, 0.02))
-    assert r.elements["clamp"].any() and (~r.elements["clamp"]).any()
-    w = r.wires
-    np.testing.assert_allclose(w["damage"], np.maximum(w["damage_free"], w["damage_clamp"]))
+    np.testing.assert_array_equal(r.elements.clamp, in_clamp_zone(z, 0.1, 0.02))
+    assert r.elements.clamp.any() and (~r.elements.clamp).any()
+    wires = r.wires
+    np.testing.assert_allclose(
+        wires.whole.damage, np.maximum(wires.free_span.damage, wires.clamp_zone.damage)
+    )
     free = r.text.split("free span (")[1].split("clamp zone (")[0]
     hot = [
         row
@@ -181,7 +183,7 @@ def test_hot_spots_and_damage_are_split_by_zone(seven_wire_run):
     tension = strand_tension(sections)
     np.testing.assert_allclose(tension, 10e3, rtol=1e-2)
     assert "no tension cycle" in r.text
-    assert "Poffenberger–Swart skipped" in r.text and r.poffenberger_swart["holds"] is False
+    assert "Poffenberger–Swart skipped" in r.text and r.poffenberger_swart.holds is False
     default = replace(FatigueSettings(), end_zone=0.0).end_zone_length(cable)
     assert default == pytest.approx(cable.layers[-1].pitch / 2)  # how far the ends' lock reaches
 
@@ -204,7 +206,7 @@ def test_a_span_without_a_free_span_says_so_in_one_line(seven_wire_run):
         "0.05 m, leaves one"
     ]
     assert f"{2 * half:.4g}" == "0.1977" and _intervals(r.text) == []
-    assert r.elements["clamp"].all() and f"clamp zone (within {half:.4g} m of an end):" in r.text
+    assert r.elements.clamp.all() and f"clamp zone (within {half:.4g} m of an end):" in r.text
 
 
 def test_the_quick_case_reports_its_free_span(quick_run):

@@ -368,7 +368,7 @@ def test_the_spectrum_text_gives_each_layer_and_the_tension_check(spectrum_run):
     assert text.count("layer 0: wire 0, D = ") == 2 and text.count("layer 1: wire ") == 2
     assert "five worst contact pairs" in text and "not checked ([fatigue] breaking_strength" in text
     dnv = sum(
-        n * r.fatigue.tension_check["dnv"]
+        n * r.fatigue.tension_check.dnv
         for (_, n), r in zip(case.fatigue.spectrum, results[1:], strict=True)
     )
     assert f"DNV-OS-E301 spiral rope: D = {dnv:.3g}" in text
@@ -379,26 +379,26 @@ def _fake_member(damage: float, curve: str | None):
     and one pair, ``damage`` per cycle (NaN: no curve)."""
     d = np.nan if curve is None else damage
     report = SimpleNamespace(
-        elements={
-            "wire": np.array([0, 0]),
-            "layer": np.array([0, 0]),
-            "z": np.array([0.5, 0.0]),
-            "clamp": np.array([False, True]),
-            "damage": np.array([d, 2 * d]),
-        },
-        crossings={
-            "interface": np.array([0]),
-            "wire_a": np.array([0]),
-            "wire_b": np.array([1]),
-            "z": np.array([0.5]),
-            "clamp": np.array([False]),
-            "line": np.array([True]),
-            "damage": np.array([d]),
-        },
-        wires={"curve": np.array([curve or "not assessed"])},
+        elements=SimpleNamespace(
+            wire=np.array([0, 0]),
+            layer=np.array([0, 0]),
+            z=np.array([0.5, 0.0]),
+            clamp=np.array([False, True]),
+            damage=np.array([d, 2 * d]),
+        ),
+        crossings=SimpleNamespace(
+            interface=np.array([0]),
+            wire_a=np.array([0]),
+            wire_b=np.array([1]),
+            z=np.array([0.5]),
+            clamp=np.array([False]),
+            line=np.array([True]),
+            damage=np.array([d]),
+        ),
+        wires=SimpleNamespace(curve=np.array([curve or "not assessed"])),
         end_zone=0.1,
         length=1.0,
-        tension_check={"dnv": 1e-9, "api": None, "range": 5.0, "mean": 1e4, "cycle": False},
+        tension_check=SimpleNamespace(dnv=1e-9, api=None, range=5.0, mean=1e4, cycle=False),
     )
     return SimpleNamespace(fatigue=report, failure="", interrupted=False)
 
@@ -406,10 +406,10 @@ def _fake_member(damage: float, curve: str | None):
 def test_a_layer_without_a_curve_is_not_assessed_and_a_failed_member_gives_no_spectrum(tmp_path):
     case = case_from_dict({"fatigue": {"spectrum": [[1.0, 10.0], [2.0, 5.0]]}})
     r = spectrum_report(case, [_fake_member(1e-6, None), _fake_member(1e-5, None)], "lateral", "N")
-    assert np.all(np.isnan(r.wires["damage"])) and np.isnan(r.crossings["damage"][0])
-    assert "layer 0: not assessed" in r.text and r.tension["dnv"] == pytest.approx(15e-9)
+    assert np.all(np.isnan(r.wires.damage)) and np.isnan(r.crossings.damage[0])
+    assert "layer 0: not assessed" in r.text and r.tension.dnv == pytest.approx(15e-9)
     ok = spectrum_report(case, [_fake_member(1e-6, "x"), _fake_member(1e-5, "x")], "lateral", "N")
-    assert ok.wires["damage"].tolist() == pytest.approx([10e-6 + 5e-5, 20e-6 + 10e-5])
+    assert ok.wires.damage.tolist() == pytest.approx([10e-6 + 5e-5, 20e-6 + 10e-5])
     failed = _fake_member(1e-5, "x")
     failed.failure = "step 3 did not converge"
     text = write_spectrum(tmp_path, case, [_fake_member(1e-6, "x"), failed], "lateral", "N")

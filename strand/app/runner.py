@@ -323,7 +323,8 @@ def _report_and_figures(
         report = run_fatigue_report(case, result, seconds, stream, clamp=recording.kind.clamp)
         result.fatigue = report
     if case.output.plots:
-        from .plots import fatigue_figures, results_figures
+        from .fatigue.figures import fatigue_figures
+        from .plots import results_figures
 
         paths = results_figures(case, result, problem, recording.kind)
         if report is not None:

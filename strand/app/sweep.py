@@ -185,25 +185,29 @@ def fatigue_columns(report, n_layers: int) -> dict[str, float]:
     amplitude to its own (NaN where skipped or without a clamp). NaN where a zone has none."""
     if report is None:
         return {}
-    e, w, c = report.elements, report.wires, report.crossings
+    elements, crossings = report.elements, report.crossings
     out: dict[str, float] = {}
     for zone, clamp in (("free", False), ("clamp", True)):
         for i in range(n_layers):
-            mine = (e["clamp"] == clamp) & (e["layer"] == i)
+            mine = (elements.clamp == clamp) & (elements.layer == i)
             out[f"stress_range_{zone}_layer_{i}_MPa"] = (
-                1e-6 * float(e["range"][mine].max()) if mine.any() else np.nan
+                1e-6 * float(elements.range[mine].max()) if mine.any() else np.nan
             )
     for zone, clamp in (("free", False), ("clamp", True)):
         for kind, line in (("", False), ("line_", True)):
-            mine = np.flatnonzero((c["clamp"] == clamp) & (c["line"] == line))
-            k = mine[np.argmax(c["ruiz_f2"][mine])] if len(mine) else None
-            f2, slip = (np.nan, np.nan) if k is None else (c["ruiz_f2"][k], c["slip_amplitude"][k])
+            mine = np.flatnonzero((crossings.clamp == clamp) & (crossings.line == line))
+            k = mine[np.argmax(crossings.ruiz_f2[mine])] if len(mine) else None
+            f2, slip = (
+                (np.nan, np.nan)
+                if k is None
+                else (crossings.ruiz_f2[k], crossings.slip_amplitude[k])
+            )
             out[f"worst_{kind}f2_{zone}_MPa_J_per_m2"] = 1e-6 * f2
             out[f"worst_{kind}slip_amplitude_{zone}_um"] = 1e6 * slip
-        damage = w[f"damage_{zone}"]
+        damage = report.wires.zone(clamp).damage
         out[f"largest_damage_{zone}"] = (
             np.nan if np.all(np.isnan(damage)) else float(np.nanmax(damage))
         )
-    ps = report.poffenberger_swart
-    out["ps_ratio"] = ps["ratio"] if ps is not None and ps["holds"] else np.nan
+    check = report.poffenberger_swart
+    out["ps_ratio"] = check.ratio if check is not None and check.holds else np.nan
     return out

@@ -11,6 +11,7 @@ from ...cable.description import Cable
 from ...fatigue.cycles import repeating_cycles
 from ...fatigue.tn import TENSION_CYCLE_SHARE, tension_damage
 from ..history import History
+from .findings import TensionCheck, WireResults
 
 __all__ = ["strand_tension", "midspan_axial_sum", "tension_check"]
 
@@ -44,8 +45,8 @@ def midspan_axial_sum(sections: History, cable: Cable) -> Array:
 
 
 def tension_check(
-    sections: History, cable: Cable, breaking_strength: float, wires: dict[str, Array]
-) -> dict:
+    sections: History, cable: Cable, breaking_strength: float, wires: WireResults
+) -> TensionCheck:
     """The mooring standards' strand-level check on the strand's tension history, repeating:
     DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage per cycle, beside the
     wire-level model's largest; ``cycle`` False where the tension stays within
@@ -53,20 +54,20 @@ def tension_check(
     (max + min)/2 and max − min of the history. A mean over the recorded steps would weigh
     each leg by how finely the run stepped it."""
     tension = strand_tension(sections, cable)
-    c = repeating_cycles(tension)
+    cycles = repeating_cycles(tension)
     area = sum(lay.wires * lay.wire.area for lay in cable.layers)
-    dnv, api = tension_damage(c.range, c.count, c.mean, area, breaking_strength)
-    largest = float(c.range.max()) if len(c) else 0.0
+    dnv, api = tension_damage(cycles.range, cycles.count, cycles.mean, area, breaking_strength)
+    largest = float(cycles.range.max()) if len(cycles) else 0.0
     mean = 0.5 * float(tension.max() + tension.min())
-    damage = wires["damage"]
+    damage = wires.whole.damage
     worst = int(np.nanargmax(damage)) if not np.all(np.isnan(damage)) else None
-    return {
-        "mean": mean,
-        "range": largest,
-        "area": area,
-        "cycle": largest >= TENSION_CYCLE_SHARE * abs(mean),
-        "dnv": dnv,
-        "api": api,
-        "wire": worst,
-        "wire_damage": float(damage[worst]) if worst is not None else np.nan,
-    }
+    return TensionCheck(
+        mean=mean,
+        range=largest,
+        area=area,
+        cycle=largest >= TENSION_CYCLE_SHARE * abs(mean),
+        dnv=dnv,
+        api=api,
+        wire=worst,
+        wire_damage=float(damage[worst]) if worst is not None else np.nan,
+    )

@@ -15,12 +15,13 @@ def quick_run(tmp_path_factory):
     folder, and what its figures showed as they were saved (``figures``: name → the matplotlib
     figure; ``pictures``: name → the pyvista plotter's title extent, window size and rulers),
     for the tests of the figures and of the fatigue report."""
+    import strand.app.deformed_picture as picture
     import strand.app.plots as plots
     from strand.app.case import load_case
     from strand.app.run import run_case
 
     figures, pictures = {}, {}
-    save_figure, save = plots.save_figure, plots.save
+    save_figure, save = plots.save_figure, picture.save
 
     def keep_figure(fig, path, *args, **kwargs):
         figures[Path(path).name] = fig
@@ -28,7 +29,7 @@ def quick_run(tmp_path_factory):
 
     def keep_picture(plotter, path):
         title = plotter.actors["title"]
-        box = plots.text_extent(plotter, title)
+        box = picture.text_extent(plotter, title)
         props = plotter.renderer.GetViewProps()
         props = [props.GetItemAsObject(i) for i in range(props.GetNumberOfItems())]
         rulers = [p for p in props if p.IsA("vtkAxisActor2D")]
@@ -44,7 +45,7 @@ def quick_run(tmp_path_factory):
     case = load_case(ROOT / "cases" / "quick_1x6.toml", ["output.fields=false"])
     with pytest.MonkeyPatch.context() as m:
         m.setattr(plots, "save_figure", keep_figure)
-        m.setattr(plots, "save", keep_picture)
+        m.setattr(picture, "save", keep_picture)
         result = run_case(case, folder)
     assert not result.failure
     return {"folder": folder, "figures": figures, "pictures": pictures, "case": case}

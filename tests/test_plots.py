@@ -9,7 +9,7 @@ import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import to_rgba
 
-from strand.app.plots import magnification
+from strand.app.deformed_picture import magnification
 from strand.fatigue import SN_CURVES
 
 

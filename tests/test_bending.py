@@ -20,7 +20,7 @@ from strand.analytical import (
     stick_bending_estimate,
 )
 from strand.app.case import CaseError, case_from_dict
-from strand.app.kinds.saddle import saddle_beam_reference
+from strand.app.kinds.saddle_report import saddle_beam_reference
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings

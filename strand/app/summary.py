@@ -11,6 +11,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..cable.geometry import LINE
+from ..model.layer_pressure import layer_wire_forces
 from ..model.pair_results import PairResults
 from ..model.post import bending_stiffness_bounds, fibre_model
 from .run_result import RunResult
@@ -78,9 +79,8 @@ def tension_lines(case: Case, result: RunResult, geometry) -> list[str]:
         f"  strain (µε)              {1e6 * strain:8.0f}  {1e6 * ref['strain']:8.0f}  "
         f"{100 * (strain / ref['strain'] - 1):+6.1f} %",
     ]
-    middle = np.abs(t.z - L / 2) < L / 4
-    for i, f_ref in enumerate(ref["wire_force"]):
-        f = t.axial[middle & (t.layer == i)].mean()
+    forces = layer_wire_forces(t.layer, t.z, t.axial, L, core=True)
+    for i, (f, f_ref) in enumerate(zip(forces, ref["wire_force"], strict=True)):
         name = "core" if i == 0 else f"layer {i}"
         lines.append(
             f"  wire force {name:8s} (N)  {f:8.0f}  {f_ref:8.0f}  {100 * (f / f_ref - 1):+6.1f} %"
@@ -124,14 +124,10 @@ def reaction_lines(case: Case, result: RunResult) -> list[str]:
 
 
 def layer_stresses(cable, cells, length: float) -> Array:
-    """Mean axial stress N/A (Pa) of each layer's wires over the middle half of the strand."""
-    middle = np.abs(cells.z - length / 2) < length / 4
-    return np.array(
-        [
-            cells.axial[middle & (cells.layer == i)].mean() / lay.wire.area
-            for i, lay in enumerate(cable.layers)
-        ]
-    )
+    """Mean axial stress N/A (Pa) of each layer's wires over the middle half of the strand
+    (``layer_pressure.layer_wire_forces``)."""
+    forces = layer_wire_forces(cells.layer, cells.z, cells.axial, length, core=True)
+    return np.array([f / lay.wire.area for f, lay in zip(forces, cable.layers, strict=True)])
 
 
 def wire_stress_line(cable, cells, length: float) -> str:

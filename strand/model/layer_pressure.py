@@ -102,14 +102,21 @@ def fibre_pressure(geometry: StrandGeometry, wire_force: npt.ArrayLike) -> Array
 
 
 def layer_wire_forces(
-    layer: npt.ArrayLike, z: npt.ArrayLike, axial: npt.ArrayLike, length: float
+    layer: npt.ArrayLike,
+    z: npt.ArrayLike,
+    axial: npt.ArrayLike,
+    length: float,
+    *,
+    core: bool = False,
 ) -> Array:
-    """Mean axial force (N) of the cells of each helical layer 1, 2, … whose midpoint ``z``
-    (m) lies in the middle half of the span ``length`` (``post.CellResults``' arrays)."""
+    """Mean axial force (N) of the cells of each helical layer 1, 2, … (and first of the core,
+    layer 0, with ``core``) whose midpoint ``z`` (m) lies in the middle half of the span
+    ``length``: within L/4 of midspan, ends included, as the set-ups' measuring zone
+    (``post.CellResults``' arrays)."""
     layer, z, axial = (np.asarray(v) for v in (layer, z, axial))
     middle = np.abs(z - length / 2) <= length / 4
     n = int(layer.max()) if len(layer) else 0
-    return np.array([axial[middle & (layer == i)].mean() for i in range(1, n + 1)])
+    return np.array([axial[middle & (layer == i)].mean() for i in range(0 if core else 1, n + 1)])
 
 
 def _radial(geometry: StrandGeometry, x: Array, z0: Array, core: Array) -> Array:

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..cable.description import Cable
+from ..cable.description import Cable, CableError
 from ..fatigue.sn import SN_CURVES
+from ..model.same_layer import first_layer_lift
 from ..solver.convergence import ITERATIONS
 from . import kinds
 from .errors import CaseError
@@ -45,6 +46,7 @@ def checked_case(case: Case) -> Case:
         case = _spectrum_sweep(case)
         _check_steps_and_load(case)
         _check_fatigue(case.fatigue, case.cable)
+        _check_contact(case)
     except CaseError as e:
         raise CaseError(f"{case.source}: {e}") from None
     return case
@@ -84,6 +86,13 @@ def _check_steps_and_load(case: Case) -> None:
             f"[load] sweep = {list(load.sweep)} needs a cycle with a target other than 0 "
             f"(cycle = {list(load.cycle)} stays at zero load)"
         )
+
+
+def _check_contact(case: Case) -> None:
+    try:
+        first_layer_lift(case.cable, case.contact.first_layer)
+    except CableError as e:
+        raise CaseError(f"[contact] {e}") from None
 
 
 def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:

@@ -7,7 +7,7 @@ They choose the contact normal (``strand.contact.element.resolve_normal``), the 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import KW_ONLY, dataclass, fields
 from typing import ClassVar
 
 from ..cable.description import CableError
@@ -91,9 +91,10 @@ class ContactSettings:
     reach: float = 1e-3
     same_layer: str = "auto"
     same_layer_stencil: str = "segment"
+    slip: str = "surface"
+    _: KW_ONLY
     gap_seed: int = 0
     first_layer: str = "on_core"
-    slip: str = "surface"
 
     #: the SI unit of every number (error messages give it)
     UNITS: ClassVar[dict[str, str]] = {

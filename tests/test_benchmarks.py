@@ -164,3 +164,21 @@ def test_variants_run_each_in_a_process_of_its_own(harness, tmp_path):
     assert rows["a"]["args"] == ["--quick"] and rows["a"]["pid"] != rows["b"]["pid"]
     with pytest.raises(SystemExit, match="bad: failed"):
         harness.run_variants(script, ["a", "bad"], env=lambda name: env)
+
+
+@pytest.mark.slow
+def test_layer_states_quick_runs(tmp_path):
+    """Two layer states on 0.1 m of Cardinal, one process: the stamp and a row each, with a
+    first-step secant, moments beside the law in brackets and the cost."""
+    done = _run(
+        [str(BENCHMARKS / "layer_states.py"), "--quick", "packed", "nominal"], tmp_path, 600
+    )
+    lines = done.stdout.splitlines()
+    assert re.match(r"\d{4}-\d\d-\d\d \d\d:\d\d, commit \w+", lines[0])
+    rows = [line for line in lines if line.startswith(("| packed", "| nominal"))]
+    assert len(rows) == 2, done.stdout
+    for line in rows:
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        assert float(cells[1]) > 0  # the first step's secant over EI_max
+        assert re.match(r"\d+\.\d \(\d+\.\d\)", cells[3])  # M at 0.0083 (the law's)
+        assert re.match(r"\d+ s, \d+ \+ \d+ its, \d+ LUs", cells[-1])

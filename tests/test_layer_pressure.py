@@ -50,14 +50,19 @@ def _tensioned(
     stencil: str = "segment",
     geometry=None,
     tension: float = 10e3,
+    first_layer: str = "on_core",
+    first_step: float | None = None,
 ):
     """Layer pressure of ``geometry`` (default: a 0.15 m 1+6) pulled to ``tension`` (N)."""
     geometry = geometry or build_geometry(_seven_wire(), 0.15, 4e-3)
-    settings = ContactSettings(same_layer=same_layer, model=model, same_layer_stencil=stencil)
+    settings = ContactSettings(
+        same_layer=same_layer, model=model, same_layer_stencil=stencil, first_layer=first_layer
+    )
     problem = StrandProblem(
         geometry, settings, NewtonOptions(atol=1e-4, max_it=15), setup=SaddleTest
     )
-    LoadStepper(problem.solver, tension / 2, tension / 10).ramp(
+    first, least = (tension / 2, tension / 10) if first_step is None else (first_step, 10.0)
+    LoadStepper(problem.solver, first, least).ramp(
         partial(problem.setup.set, "tension"), 0.0, tension
     )
     model = problem.model

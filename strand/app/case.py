@@ -20,7 +20,11 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     model = "small"           # small sliding (pairs fixed at t = 0) | large (re-projected: the baseline)
     reach = 1e-3              # m, large sliding: sliding room reserved either side of each pair
     same_layer = "auto"       # contact between neighbours of a layer: auto (packed) | packed
-                              #   (touching, the spare gap in one place) | nominal | off
+                              #   (touching, the spare gap in one place) | nominal (spread
+                              #   evenly) | random (split at random from gap_seed) | off
+    gap_seed = 0              # the seed of random gaps
+    first_layer = "on_core"   # a first layer whose helices overlap (a closed ring): on_core
+                              #   (on the core too) | ring (a vault off the core)
     same_layer_stencil = "segment"  # a same-layer pair ties node a to its facing segment, or
                               #   to the neighbour's nearest node (node: a cheaper LU, results
                               #   within 1-20x the mesh error: docs/benchmarks.md)
@@ -145,6 +149,8 @@ BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
 _SIGNED = {("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 #: settings for which 0 means "off" (they must not be negative)
 _ZERO_IS_OFF = {("steps", "balance"), ("fatigue", "end_zone"), ("fatigue", "breaking_strength")}
+#: whole numbers from 0 up
+_COUNTS = {("contact", "gap_seed")}
 
 
 def _boolean(where: str, value) -> bool:
@@ -191,6 +197,10 @@ def _value(section: str, key: str, value, default, signed: bool = False):
     if isinstance(default, int | float):
         tension = (section, key) == ("load", "tension")
         signed = signed or tension or (section, key) in _SIGNED
+        if (section, key) in _COUNTS:
+            if not (isinstance(value, int) and not isinstance(value, bool) and value >= 0):
+                raise CaseError(f"{where}: expected a whole number ≥ 0")
+            return value
         number = _number(where, value, default, signed, (section, key) in _ZERO_IS_OFF)
         if tension and not number > 0:
             raise CaseError(

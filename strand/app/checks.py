@@ -13,8 +13,9 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from ..cable.description import Cable
+from ..cable.description import Cable, CableError
 from ..fatigue.sn import SN_CURVES
+from ..model.same_layer import first_layer_lift
 from ..solver.convergence import ITERATIONS
 from . import kinds
 from .errors import CaseError
@@ -50,6 +51,7 @@ def checked_case(case: Case) -> tuple[Case, SetupKind]:
         case = _spectrum_sweep(case)
         kind = _check_steps_and_load(case)
         _check_fatigue(case.fatigue, case.cable)
+        _check_contact(case)
     except CaseError as e:
         raise CaseError(f"{case.source}: {e}") from None
     return case, kind
@@ -92,6 +94,13 @@ def _check_steps_and_load(case: Case) -> SetupKind:
             f"(cycle = {list(load.cycle)} stays at zero load)"
         )
     return kind
+
+
+def _check_contact(case: Case) -> None:
+    try:
+        first_layer_lift(case.cable, case.contact.first_layer)
+    except CableError as e:
+        raise CaseError(f"[contact] {e}") from None
 
 
 def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:

@@ -7,14 +7,14 @@ They choose the contact normal (``strand.contact.element.resolve_normal``), the 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import KW_ONLY, dataclass, fields
 from typing import ClassVar
 
 from ..cable.description import CableError
 from ..contact.element import check_slip, resolve_normal
 from ..contact.errors import ContactError
 from .compliances import PENALTY_SETTINGS, compliance_named, compliances
-from .same_layer import SAME_LAYER, SAME_LAYER_STENCILS
+from .same_layer import FIRST_LAYER, SAME_LAYER, SAME_LAYER_STENCILS
 
 __all__ = ["ContactSettings"]
 
@@ -52,11 +52,19 @@ class ContactSettings:
         reach: large sliding only: sliding distance reserved either side of each initial pair,
             m (its window holds every segment of the two wires within reach).
         same_layer: contact between neighbouring wires of one layer (``strand.model.same_layer``):
-            "off", "nominal" (each layer's gaps from its helices, clipped at touching),
-            "packed" (neighbours touching, the spare circumference in one gap, as stranding
-            leaves a layer whose nominal gaps are of the order of its wires' diameter
-            tolerance), or "auto" (default): "packed". In large sliding each facing point is
-            re-found on the neighbour's centreline within the sliding reach.
+            "off", or how stranding spreads a layer's spare circumference over its gaps:
+            "nominal" (evenly: each gap the one its helices give), "packed" (bunched:
+            neighbours touching, the spare circumference in one gap, as stranding leaves a
+            layer whose nominal gaps are of the order of its wires' diameter tolerance),
+            "random" (split at random from ``gap_seed``), or "auto" (default): "packed". A
+            layer whose helices would overlap touches all round whatever the choice. In large
+            sliding each facing point is re-found on the neighbour's centreline within the
+            sliding reach.
+        gap_seed: the seed of "random" gaps (the same seed, the same gaps).
+        first_layer: where the first helical layer sits when its helices would overlap (a
+            closed ring, as Cardinal's steel layer): "on_core" (default: on the core too, as on
+            a king wire that just fits) or "ring" (a vault standing off the core, whose line
+            pairs start open by ``same_layer.ring_lift``).
         same_layer_stencil: the nodes a same-layer pair ties in small sliding
             (``strand.model.same_layer``): "segment" (default: node a to the facing point of the
             neighbour's segment [b₀, b₁]) or "node" (node a to the neighbour's nearest node c,
@@ -84,6 +92,9 @@ class ContactSettings:
     same_layer: str = "auto"
     same_layer_stencil: str = "segment"
     slip: str = "surface"
+    _: KW_ONLY
+    gap_seed: int = 0
+    first_layer: str = "on_core"
 
     #: the SI unit of every number (error messages give it)
     UNITS: ClassVar[dict[str, str]] = {
@@ -91,6 +102,7 @@ class ContactSettings:
         "k_line": "N/m²",
         "g_lim": "m",
         "reach": "m",
+        "gap_seed": "",
     }
 
     def __post_init__(self):
@@ -117,6 +129,15 @@ class ContactSettings:
                 f"contact same_layer_stencil {self.same_layer_stencil!r} is unknown; choose "
                 f"{' or '.join(SAME_LAYER_STENCILS)}"
             )
+        if self.first_layer not in FIRST_LAYER:
+            raise CableError(
+                f"contact first_layer {self.first_layer!r} is unknown; choose "
+                f"{' or '.join(FIRST_LAYER)}"
+            )
+        if not (isinstance(self.gap_seed, int) and not isinstance(self.gap_seed, bool)) or (
+            self.gap_seed < 0
+        ):
+            raise CableError(f"contact gap_seed = {self.gap_seed!r}: must be a whole number ≥ 0")
         for name in ("k_point", "k_line", "g_lim", "reach"):
             value = getattr(self, name)
             if not (isinstance(value, int | float) and value > 0):

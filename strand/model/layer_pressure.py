@@ -31,11 +31,12 @@ on it, pushing inward too):
   (``ring_friction``: 1.7 % of a tensioned 1+6 ring's load); ``hoop``: the mean contact's
   normal line force in the cross-section's plane, H (N/m), with ``ring − ring_friction`` ≈
   2 n sin(π/n) H;
-* the gap: packed layers (``same_layer.same_layer_pairs``) gather the layer's spare
-  circumference between its last and first wires; ``gap_force`` is that contact's line force
-  (N/m of strand), ``bounding`` the line forces of the contacts either side of it (last but one
-  | last wire, first | second), ``gap_min`` the smallest gap across it (m) and ``gap_closed``
-  whether it touches anywhere in the middle half (a gap ≤ 0 with a force > 0).
+* the gap: the layer's widest initial gap (``same_layer.same_layer_pairs``; packed layers gather
+  their spare circumference between their last and first wires); ``gap_force`` is that
+  contact's line force (N/m of strand), ``bounding`` the line forces of the contacts either side
+  of it (for a packed layer: last but one | last wire, first | second), ``gap_min`` the smallest
+  gap across it (m) and ``gap_closed`` whether it touches anywhere in the middle half (a gap ≤ 0
+  with a force > 0).
 
 Units: m, N, N/m.
 """
@@ -69,7 +70,8 @@ class LayerPressure:
             normal forces' and their friction's.
         ring_friction: the friction's part of ``ring``, N/m.
         hoop: the ring's hoop force H per metre of strand, N/m (ring ≈ 2 n sin(π/n) H).
-        gap_force: line force across the layer's gap (last | first wire), N/m.
+        gap_force: line force across the layer's widest initial gap (packed: last | first
+            wire), N/m.
         bounding: line forces of the contacts either side of the gap, N/m.
         gap_min: smallest gap across the layer's gap, m (NaN without same-layer pairs).
         gap_closed: whether the gap touches anywhere in the middle half.
@@ -117,6 +119,13 @@ def layer_wire_forces(
     middle = np.abs(z - length / 2) <= length / 4
     n = int(layer.max()) if len(layer) else 0
     return np.array([axial[middle & (layer == i)].mean() for i in range(0 if core else 1, n + 1)])
+
+
+def _widest(pairs: SameLayerPairs, wire_of_a: npt.NDArray[np.int64], wires) -> int:
+    """Which of ``wires`` (one layer's, in order) starts the widest gap to the next: the last
+    of the widest (packed layers: the last wire)."""
+    initial = np.array([pairs.gap[wire_of_a == w].max(initial=-np.inf) for w in wires])
+    return len(wires) - 1 - int(np.argmax(initial[::-1]))
 
 
 def _radial(geometry: StrandGeometry, x: Array, z0: Array, core: Array) -> Array:
@@ -196,8 +205,10 @@ def layer_pressure(
         if ring_terms is not None and lay.wires > 1:
             mine = s_inside & (s.layer == i)
             wires = np.flatnonzero(g.wire_layer == i)
-            gap_pairs = mine & (s_wire == wires[-1])
-            line = [force[mine & (s_wire == w)].sum() / window for w in (wires[-2], wires[0])]
+            k = _widest(s, s_wire, wires)
+            gap_pairs = mine & (s_wire == wires[k])
+            either_side = (wires[k - 1], wires[(k + 1) % len(wires)])
+            line = [force[mine & (s_wire == w)].sum() / window for w in either_side]
             gaps = np.asarray(st["gap"])[gap_pairs]
             record |= {
                 "ring": float((ring_terms + friction_terms)[mine].sum() / window),

@@ -63,7 +63,9 @@ def strand_stencils(
     else:
         out = [pair_stencils(geometry)]
     if settings.same_layer != "off":
-        pairs = same_layer_pairs(geometry, settings.same_layer, settings.same_layer_stencil)
+        pairs = same_layer_pairs(
+            geometry, settings.same_layer, settings.same_layer_stencil, seed=settings.gap_seed
+        )
         if settings.model == "large":
             out += [w.nodes for w in same_layer_windows(geometry, pairs, settings.reach)]
         else:
@@ -108,7 +110,7 @@ class StrandModel:
         self.same_layer_pairs = (
             None
             if cs.same_layer == "off"
-            else same_layer_pairs(geometry, cs.same_layer, cs.same_layer_stencil)
+            else same_layer_pairs(geometry, cs.same_layer, cs.same_layer_stencil, seed=cs.gap_seed)
         )
         builder = same_layer_sliding_groups if cs.model == "large" else same_layer_groups
         self.same_layer = (

@@ -19,14 +19,26 @@ at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) i
 
 Neither normal changes the gap under rigid rotations (a frozen normal closes it by d ω²/2). The
 normal law is the Hertz line law over the node's tributary length of wire (with a C¹ onset,
-``contact.normal_laws.SmoothOnset``: these pairs start touching without load), the friction Mindlin's
-with the layer's Coulomb coefficient. Initial gaps (``[contact] same_layer``):
+``contact.normal_laws.SmoothOnset``: these pairs start touching without load), the friction
+Mindlin's with the layer's Coulomb coefficient.
 
-* ``"nominal"``: every neighbour at the layer's nominal gap, clipped at 0 (a layer whose helices
-  would overlap is taken as touching: stranding puts its wires side by side);
-* ``"packed"``: every neighbour touching, and the layer's spare circumference, n times its
-  nominal gap, gathered in the one gap between its last and first wires, as stranding leaves
-  wires bunched.
+A layer of n wires has n (D − d) of spare circumference, measured between centre lines. How
+stranding spreads it over the n gaps (``[contact] same_layer``, ``spread_gaps``) is the layer's
+state:
+
+* ``"nominal"``: spread evenly, every neighbour at the nominal gap D − d;
+* ``"packed"``: bunched, every neighbour touching and the whole spare circumference in the one
+  gap between the last and first wires;
+* ``"random"``: split at random, uniformly over every split (a Dirichlet(1, …, 1) draw of the
+  shares, ``[contact] gap_seed``: the same seed, the same gaps).
+
+A layer whose helices would overlap (D < d: Cardinal's steel layer) has no spare circumference:
+its wires touch one another all round, a closed ring, whatever the setting. It then rests on the
+layer below too (``[contact] first_layer = "on_core"``, the default, as if the core were the
+king wire that just fits: a core 0.85 % thicker for Cardinal), or stands off it as a vault
+(``"ring"``: the ring widened until its helices just touch at their lay length, ``ring_lift``,
+the core's line pairs open by that lift: 14.2 µm for Cardinal). A thicker core, a king wire,
+is the cable's ``core.diameter``: it opens the first layer's gaps.
 
 In large sliding (``[contact] model = "large"``) the same pairs are line pairs of
 ``strand.contact.sliding``: node a against the neighbour's C¹ centreline, its facing point
@@ -46,12 +58,12 @@ Units: m, N.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import numpy.typing as npt
 
-from ..cable.description import Layer
+from ..cable.description import CableError, Layer
 from ..cable.geometry import StrandGeometry
 from ..contact.candidates import closest_on_segments
 from ..contact.element import ContactGroup
@@ -63,10 +75,14 @@ from .compliances import Wires, compliance_named
 from .partition import owned_rows
 
 __all__ = [
+    "FIRST_LAYER",
     "SAME_LAYER",
     "SAME_LAYER_STENCILS",
     "SameLayerPairs",
     "helix_clearance",
+    "first_layer_lift",
+    "ring_lift",
+    "spread_gaps",
     "same_layer_pairs",
     "same_layer_laws",
     "same_layer_groups",
@@ -76,8 +92,10 @@ __all__ = [
 Array = npt.NDArray[np.float64]
 Int = npt.NDArray[np.int64]
 
-#: choices of ``[contact] same_layer``
-SAME_LAYER = ("off", "nominal", "packed")
+#: choices of ``[contact] same_layer``: off, or how a layer's spare circumference is spread
+SAME_LAYER = ("off", "nominal", "packed", "random")
+#: choices of ``[contact] first_layer``: the first helical layer on the core, or vaulted over it
+FIRST_LAYER = ("on_core", "ring")
 #: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], or node a to the
 #: neighbour's nearest node c [c, a]
 SAME_LAYER_STENCILS = ("segment", "node")
@@ -89,6 +107,8 @@ def helix_clearance(layer: Layer) -> float:
     r, n = layer.radius, layer.wires
     omega = np.tan(layer.alpha) / r
     step = 2 * np.pi / n
+    if omega == 0:  # straight wires: side by side at 2π/n
+        return float(2 * r * np.sin(step / 2))
 
     def square(s):
         return 2 * r * r * (1 - np.cos(s + step)) + (s / omega) ** 2
@@ -102,6 +122,63 @@ def helix_clearance(layer: Layer) -> float:
         else:
             lo = a
     return float(np.sqrt(square(0.5 * (lo + hi))))
+
+
+def ring_lift(layer: Layer) -> float:
+    """How far ``layer``'s wires must move out, at their lay length, for their helices to just
+    touch one another, m: 0 where they do not overlap (bisection to 1e-12 m of the radius)."""
+    d = layer.wire.diameter
+    if helix_clearance(layer) >= d:
+        return 0.0
+
+    def clearance(lift: float) -> float:
+        r = layer.radius + lift
+        angle = np.degrees(np.arctan(np.tan(layer.alpha) * r / layer.radius))  # same lay length
+        return helix_clearance(replace(layer, radius=r, lay_angle=float(angle)))
+
+    lo, hi = 0.0, d
+    while hi - lo > 1e-12:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if clearance(mid) < d else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def spread_gaps(spare: float, n: int, how: str, rng: np.random.Generator | None = None) -> Array:
+    """The n gaps between neighbours k | k + 1 of a layer (m, the last between wires n − 1 and
+    0) that has ``spare`` circumference (m): ``how`` "nominal" (evenly), "packed" (all in the
+    last) or "random" (shares drawn from ``rng``, Dirichlet(1, …, 1)). No spare (≤ 0): every
+    neighbour touching."""
+    if spare <= 0:
+        return np.zeros(n)
+    if how == "nominal":
+        return np.full(n, spare / n)
+    if how == "packed":
+        return np.r_[np.zeros(n - 1), spare]
+    if how == "random":
+        if rng is None:
+            raise ValueError("random gaps need a random generator")
+        return spare * rng.dirichlet(np.ones(n))
+    raise ValueError(f"same-layer gaps {how!r}: choose one of {', '.join(SAME_LAYER[1:])}")
+
+
+def first_layer_lift(cable, first_layer: str) -> float:
+    """The initial gap of the core's line pairs, m: 0 on the core, ``ring_lift`` of the first
+    helical layer for a ring (``CableError`` where its helices do not overlap: no ring)."""
+    if first_layer not in FIRST_LAYER:
+        raise CableError(
+            f"contact first_layer {first_layer!r} is unknown; choose {' or '.join(FIRST_LAYER)}"
+        )
+    if first_layer == "on_core" or len(cable.layers) < 2:
+        return 0.0
+    layer = cable.layers[1]
+    gap = helix_clearance(layer) - layer.wire.diameter
+    if gap >= 0:
+        raise CableError(
+            f'contact first_layer = "ring": the first layer\'s wires do not touch one another '
+            f"(their nominal gap is {gap * 1e6:+.1f} µm), so they cannot vault over the core; "
+            'use "on_core"'
+        )
+    return ring_lift(layer)
 
 
 @dataclass(frozen=True)
@@ -162,28 +239,27 @@ def _wire_pairs(geometry: StrandGeometry, w: int, w_next: int):
 
 
 def same_layer_pairs(
-    geometry: StrandGeometry, gaps: str = "nominal", stencil: str = "segment"
+    geometry: StrandGeometry, gaps: str = "nominal", stencil: str = "segment", *, seed: int = 0
 ) -> SameLayerPairs:
-    """The pairs between neighbouring wires of every helical layer, with ``gaps`` "nominal" or
-    "packed" and the ``stencil`` "segment" or "node" (module docstring)."""
+    """The pairs between neighbouring wires of every helical layer, with ``gaps`` "nominal",
+    "packed" or "random" (drawn from ``seed``, layer after layer) and the ``stencil`` "segment"
+    or "node" (module docstring)."""
     if gaps not in SAME_LAYER[1:]:
-        raise ValueError(f"same-layer gaps {gaps!r}: choose nominal or packed")
+        raise ValueError(f"same-layer gaps {gaps!r}: choose one of {', '.join(SAME_LAYER[1:])}")
     if stencil not in SAME_LAYER_STENCILS:
         raise ValueError(f"same-layer stencil {stencil!r}: choose segment or node")
     g = geometry
+    rng = np.random.default_rng(seed)
     parts = []
     for i, layer in enumerate(g.cable.layers[1:], start=1):
         wires = np.flatnonzero(g.wire_layer == i)
         if len(wires) < 2:
             continue
-        layer_gap = helix_clearance(layer) - layer.wire.diameter
-        nominal, spare = max(layer_gap, 0.0), len(wires) * layer_gap
+        spare = len(wires) * (helix_clearance(layer) - layer.wire.diameter)
+        spread = spread_gaps(spare, len(wires), gaps, rng)
         for k, w in enumerate(wires):
             a, b0, b1, xi, facing, tributary = _wire_pairs(g, w, wires[(k + 1) % len(wires)])
-            if gaps == "nominal":
-                gap = np.full(len(a), nominal)
-            else:
-                gap = np.full(len(a), max(spare, 0.0) if k == len(wires) - 1 else 0.0)
+            gap = np.full(len(a), spread[k])
             normal = facing / np.linalg.norm(facing, axis=1)[:, None]
             parts.append((a, b0, b1, xi, normal, gap, tributary, np.full(len(a), i, np.int32)))
     if not parts:

@@ -28,7 +28,7 @@ from ..contact.windows import NodeChains, SlidingWindows, chain_windows, sliding
 from .compliances import Wires, compliance_named
 from .contact_settings import ContactSettings
 from .partition import DistributionError, owned_rows
-from .same_layer import SameLayerPairs, same_layer_laws
+from .same_layer import SameLayerPairs, first_layer_lift, same_layer_laws
 
 __all__ = [
     "strand_pairs",
@@ -61,9 +61,16 @@ def pair_stencils(geometry: StrandGeometry, sel=None) -> npt.NDArray[np.int64]:
     return np.column_stack([a, b, *wire_neighbours(geometry, a), *wire_neighbours(geometry, b)])
 
 
-def strand_pairs(geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32], sel) -> NodePairs:
+def strand_pairs(
+    geometry: StrandGeometry,
+    input_to_block: npt.NDArray[np.int32],
+    sel,
+    *,
+    core_gap: float = 0.0,
+) -> NodePairs:
     """The geometry's pairs ``sel`` (all of one kind) as ``NodePairs`` on the local dof blocks
-    ``input_to_block`` (``mesh.input_to_block``), with zero initial gaps."""
+    ``input_to_block`` (``mesh.input_to_block``): initial gaps zero, but ``core_gap`` (m) for
+    the core's line pairs (``same_layer.first_layer_lift``)."""
     pairs = geometry.pairs
     sel = np.asarray(sel)
     points = pair_stencils(geometry, sel)
@@ -83,7 +90,7 @@ def strand_pairs(geometry: StrandGeometry, input_to_block: npt.NDArray[np.int32]
         pairs.radius_a[sel],
         pairs.radius_b[sel],
         pairs.normal[sel],
-        np.zeros(len(sel)),
+        np.where(pairs.interface[sel] == 0, core_gap, 0.0),
         pairs.tributary[sel],
         sel,
     )
@@ -99,13 +106,14 @@ def contact_groups(
     With ``n_owned`` (a distributed mesh: the number of dof blocks this rank owns), only the
     pairs whose node a this rank owns (``partition.owned_rows``)."""
     groups = []
+    lift = first_layer_lift(geometry.cable, settings.first_layer)
     for kind in (POINT, LINE):
         sel = np.flatnonzero(geometry.pairs.kind == kind)
         if n_owned is not None:
             blocks = input_to_block[pair_stencils(geometry, sel)]
             sel = sel[owned_rows(blocks, n_owned, "contact pairs")]
         if len(sel):
-            pairs = strand_pairs(geometry, input_to_block, sel)
+            pairs = strand_pairs(geometry, input_to_block, sel, core_gap=lift)
             laws = pair_laws(geometry, sel, settings, pairs.tangents)
             groups.append(contact_terms(pairs, *laws, normal=settings.normal, slip=settings.slip))
     return groups
@@ -175,6 +183,7 @@ def sliding_groups(
     distributed mesh: the number of dof blocks this rank owns), only the pairs whose window
     starts on an owned node (``partition.owned_rows``)."""
     chains = wire_chains(geometry)
+    lift = first_layer_lift(geometry.cable, settings.first_layer)
     tangents = geometry.tangents()  # analytic: helices touch at nodes, the points start there
     points = np.arange(len(geometry.points), dtype=np.int32)
     groups = []
@@ -184,7 +193,7 @@ def sliding_groups(
             windows = windows.select(owned_rows(blocks, n_owned, "contact pairs"))
         if not len(windows.rows):
             continue
-        pairs = strand_pairs(geometry, points, windows.rows)  # on input nodes
+        pairs = strand_pairs(geometry, points, windows.rows, core_gap=lift)  # on input nodes
         pair_tangents = np.stack([tangents[pairs.a], tangents[pairs.b]], axis=1)
         laws = pair_laws(geometry, windows.rows, settings, pair_tangents)
         options = {"tangents": tangents, "blocks": input_to_block, "slip": settings.slip}

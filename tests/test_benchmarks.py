@@ -90,7 +90,7 @@ def test_window_quick_runs(tmp_path):
 
 @pytest.mark.slow
 def test_speed_quick_runs(tmp_path):
-    """The default case at 0.15 m to ±1 kN with every output, one variant: the stamp, its row and
+    """The default case at 0.1 m to +0.5 kN with every output, one variant: the stamp, its row and
     its outputs' times."""
     variant = "default: cp line search"
     done = _run([str(BENCHMARKS / "speed.py"), "--quick", variant], tmp_path, 600)

@@ -88,6 +88,9 @@ def read_run(folder: Path) -> dict:
     summary = (folder / "summary.txt").read_text()
     forces = re.search(r"mean contact force, middle half: (.*)", summary)
     secant = re.search(r"first step M/κ = \S+ N m² = (\S+) EI_max", summary)
+    if not mc:
+        failure = re.search(r"failure: (.{0,120})", summary)
+        raise RuntimeError(f"stopped before bending: {failure.group(1) if failure else '?'}")
     kappa = np.array([float(r["curvature_1_per_m"]) for r in mc])
     moment = np.array([float(r["moment_zone_middle_Nm"]) for r in mc])
     leg = np.arange(int(np.argmax(kappa)) + 1)  # the loading leg: up to the largest curvature

@@ -12,7 +12,10 @@ outputs:
 * ``random``: split at random (``gap_seed`` 0);
 * ``ring``: packed, the steel layer a vault standing off the core (``first_layer = "ring"``);
 * ``king``: packed, on a king wire 3.40 mm thick (the cable's ``core.diameter``): the steel
-  layer's gaps open.
+  layer's gaps open;
+* ``mu0.7``, ``mu1.0``: packed, the Coulomb coefficient of layers 1–3 (with the next layer out
+  and between their own wires) 0.7 or 1.0 instead of the seed's 0.5; ``core0.6``: the core's
+  (with layer 1) 0.6 instead of 0.3.
 
 One row per state: the first step's secant M/κ over EI_max; the zone's moment M (N m) at the
 curvatures of ``KAPPAS`` (the zone's own curvature, interpolated between steps), the stick–slip
@@ -48,6 +51,10 @@ STATES = {
     "random": ['contact.same_layer="random"', "contact.gap_seed=0"],
     "ring": ['contact.first_layer="ring"'],
     "king": ["cable.core.diameter=3.40e-3"],
+    # the friction's weight: packed, with other Coulomb coefficients
+    "mu0.7": [f"cable.layer.{i}.friction=0.7" for i in (1, 2, 3)],
+    "mu1.0": [f"cable.layer.{i}.friction=1.0" for i in (1, 2, 3)],
+    "core0.6": ["cable.core.friction=0.6"],
 }
 #: the first leg alone, no outputs but the tables
 COMMON = [
@@ -88,6 +95,9 @@ def read_run(folder: Path) -> dict:
     summary = (folder / "summary.txt").read_text()
     forces = re.search(r"mean contact force, middle half: (.*)", summary)
     secant = re.search(r"first step M/κ = \S+ N m² = (\S+) EI_max", summary)
+    if not mc:
+        failure = re.search(r"failure: (.{0,120})", summary)
+        raise RuntimeError(f"stopped before bending: {failure.group(1) if failure else '?'}")
     kappa = np.array([float(r["curvature_1_per_m"]) for r in mc])
     moment = np.array([float(r["moment_zone_middle_Nm"]) for r in mc])
     leg = np.arange(int(np.argmax(kappa)) + 1)  # the loading leg: up to the largest curvature

@@ -15,7 +15,9 @@ outputs:
   layer's gaps open;
 * ``mu0.7``, ``mu1.0``: packed, the Coulomb coefficient of layers 1–3 (with the next layer out
   and between their own wires) 0.7 or 1.0 instead of the seed's 0.5; ``core0.6``: the core's
-  (with layer 1) 0.6 instead of 0.3.
+  (with layer 1) 0.6 instead of 0.3;
+* ``lay-short``, ``lay-long``: packed, every layer at the shortest or longest lay length EN 50182
+  allows (``EN50182``; Cardinal's own are within it).
 
 One row per state: the first step's secant M/κ over EI_max; the zone's moment M (N m) at the
 curvatures of ``KAPPAS`` (the zone's own curvature, interpolated between steps), the stick–slip
@@ -56,6 +58,28 @@ STATES = {
     "mu1.0": [f"cable.layer.{i}.friction=1.0" for i in (1, 2, 3)],
     "core0.6": ["cable.core.friction=0.6"],
 }
+#: EN 50182's lay ratios (lay length over the layer's outer diameter; its §5.5.4–5.5.5 as RTE's
+#: pallas encodes them, ``strdcable.overheadlines.laybounds_EN50182``): steel layer of a 1+6
+#: core, inner aluminium layers, outer aluminium layer
+EN50182 = {"steel": (16.0, 26.0), "inner": (10.0, 16.0), "outer": (10.0, 14.0)}
+
+
+def lay_angles(ratio_at: int) -> list[str]:
+    """``--set`` items giving Cardinal's layers the shortest (``ratio_at`` 0) or longest (1) lay
+    lengths EN 50182 allows, at their radii."""
+    from strand.cable.description import cardinal
+
+    layers = cardinal().layers[1:]
+    items = []
+    for i, layer in enumerate(layers, start=1):
+        kind = "steel" if i == 1 else "outer" if i == len(layers) else "inner"
+        pitch = EN50182[kind][ratio_at] * (2 * layer.radius + layer.wire.diameter)
+        angle = np.degrees(np.arctan(2 * np.pi * layer.radius / pitch))
+        items.append(f"cable.layer.{i}.lay_angle={angle:.3f}")
+    return items
+
+
+STATES |= {"lay-short": lay_angles(0), "lay-long": lay_angles(1)}
 #: the first leg alone, no outputs but the tables
 COMMON = [
     "load.cycle=[1.0]",

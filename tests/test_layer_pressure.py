@@ -11,7 +11,6 @@ import pytest
 
 from strand.app.case import load_case
 from strand.app.run import run_case
-from strand.cable.description import cable_from_dict
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.layer_pressure import layer_pressure, layer_wire_forces
@@ -19,29 +18,13 @@ from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
 from strand.setups.saddle import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
-from strand_cases import SEVEN_WIRE, nineteen_wire
+from strand_cases import SEVEN_WIRE, nineteen_wire, seven_wire
 
 
 def _seven_wire():
     """A 1+6 of equal 3.34 mm wires at 6.06°: its helices would overlap, so packed neighbours
     touch all round (a closed ring)."""
-    return cable_from_dict(
-        {
-            "name": "1+6",
-            "core": {"diameter": 3.34e-3, "E": 210e9, "nu": 0.3, "friction": 0.3},
-            "layer": [
-                {
-                    "wires": 6,
-                    "diameter": 3.34e-3,
-                    "E": 180e9,
-                    "nu": 0.3,
-                    "lay_angle": 6.06,
-                    "lay": "S",
-                    "friction": 0.5,
-                }
-            ],
-        }
-    )
+    return seven_wire().cable
 
 
 def _tensioned(

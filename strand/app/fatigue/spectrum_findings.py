@@ -9,8 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-import numpy.typing as npt
+from .findings import Array, Flags, Ints, Names
 
 __all__ = [
     "SpectrumReport",
@@ -19,11 +18,6 @@ __all__ = [
     "SpectrumWires",
     "SpectrumTension",
 ]
-
-Array = npt.NDArray[np.float64]
-Ints = npt.NDArray[np.int64]
-Flags = npt.NDArray[np.bool_]
-Names = npt.NDArray[np.character]  # strings (np.str_)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -22,7 +22,7 @@ from .contact_settings import ContactSettings
 from .fields import cell_function
 from .pair_results import PairResults
 from .partition import DistributionError, owned_rows
-from .same_layer import same_layer_groups, same_layer_pairs
+from .same_layer import SameLayerPairs, same_layer_groups, same_layer_pairs
 from .strand_contact import (
     contact_groups,
     pair_stencils,
@@ -32,7 +32,7 @@ from .strand_contact import (
     sliding_windows,
 )
 
-__all__ = ["StrandModel", "layer_section", "strand_stencils"]
+__all__ = ["StrandModel", "chosen_same_layer_pairs", "layer_section", "strand_stencils"]
 
 Array = npt.NDArray[np.float64]
 
@@ -51,21 +51,33 @@ def layer_section(cmesh: CableMesh) -> CircularSection:
     return CircularSection(values["d"], values["E"], values["nu"])
 
 
-def strand_stencils(
+def chosen_same_layer_pairs(
     geometry: StrandGeometry, settings: ContactSettings
+) -> SameLayerPairs | None:
+    """The same-layer pairs ``settings`` choose (``[contact] same_layer``, its stencil and gap
+    seed), None when off."""
+    if settings.same_layer == "off":
+        return None
+    return same_layer_pairs(
+        geometry, settings.same_layer, settings.same_layer_stencil, seed=settings.gap_seed
+    )
+
+
+def strand_stencils(
+    geometry: StrandGeometry,
+    settings: ContactSettings,
+    same_layer: SameLayerPairs | None = None,
 ) -> list[npt.NDArray[np.int64]]:
     """Input nodes that a strand's terms couple, anchor first, which a distributed mesh keeps
     whole on the rank owning the anchor (``cable_mesh``): the contact pairs' (small or large
-    sliding), and each end section (the core's end, then every other wire end), which the
-    set-ups tie to a pilot."""
+    sliding; the same-layer pairs ``same_layer``, default: those ``settings`` choose), and each
+    end section (the core's end, then every other wire end), which the set-ups tie to a pilot."""
     if settings.model == "large":
         out = [nodes for _, nodes, _, _ in sliding_windows(geometry, settings.reach)]
     else:
         out = [pair_stencils(geometry)]
-    if settings.same_layer != "off":
-        pairs = same_layer_pairs(
-            geometry, settings.same_layer, settings.same_layer_stencil, seed=settings.gap_seed
-        )
+    pairs = same_layer if same_layer is not None else chosen_same_layer_pairs(geometry, settings)
+    if pairs is not None:
         if settings.model == "large":
             out += [w.nodes for w in same_layer_windows(geometry, pairs, settings.reach)]
         else:
@@ -91,7 +103,11 @@ class StrandModel:
         self.geometry = geometry
         self.contact_settings = cs = contact or ContactSettings()
         self.comm = comm
-        self.cmesh = cable_mesh(geometry, comm, strand_stencils(geometry, cs))
+        #: contact between neighbouring wires of a layer (``[contact] same_layer``): the pairs
+        #: in the geometry's order (None when off) and the group this rank evaluates
+        self.same_layer_pairs = chosen_same_layer_pairs(geometry, cs)
+        stencils = strand_stencils(geometry, cs, self.same_layer_pairs)
+        self.cmesh = cable_mesh(geometry, comm, stencils)
         self.V = beam_space(self.cmesh.mesh)
         self.w = fem.Function(self.V, name="w")
         self.section = layer_section(self.cmesh)
@@ -105,13 +121,6 @@ class StrandModel:
             self.contact = sliding_groups(geometry, self.i2b, cs, owned)
         else:
             self.contact = contact_groups(geometry, self.i2b, cs, owned)
-        #: contact between neighbouring wires of a layer (``[contact] same_layer``): the pairs
-        #: in the geometry's order (None when off) and the group this rank evaluates
-        self.same_layer_pairs = (
-            None
-            if cs.same_layer == "off"
-            else same_layer_pairs(geometry, cs.same_layer, cs.same_layer_stencil, seed=cs.gap_seed)
-        )
         builder = same_layer_sliding_groups if cs.model == "large" else same_layer_groups
         self.same_layer = (
             []

@@ -63,7 +63,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import numpy.typing as npt
 
-from ..cable.description import CableError, Layer
+from ..cable.description import Cable, CableError, Layer
 from ..cable.geometry import StrandGeometry
 from ..contact.candidates import closest_on_segments
 from ..contact.element import ContactGroup
@@ -161,7 +161,7 @@ def spread_gaps(spare: float, n: int, how: str, rng: np.random.Generator | None 
     raise ValueError(f"same-layer gaps {how!r}: choose one of {', '.join(SAME_LAYER[1:])}")
 
 
-def first_layer_lift(cable, first_layer: str) -> float:
+def first_layer_lift(cable: Cable, first_layer: str) -> float:
     """The initial gap of the core's line pairs, m: 0 on the core, ``ring_lift`` of the first
     helical layer for a ring (``CableError`` where its helices do not overlap: no ring)."""
     if first_layer not in FIRST_LAYER:

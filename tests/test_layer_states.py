@@ -9,6 +9,7 @@ import pytest
 from test_layer_pressure import _seven_wire, _tensioned
 
 from strand.app.case import case_from_dict
+from strand.app.case_toml import cable_table
 from strand.app.errors import CaseError
 from strand.cable.description import CableError, cardinal
 from strand.cable.geometry import build_geometry
@@ -89,46 +90,20 @@ def test_a_king_wire_opens_the_first_layer_and_leaves_no_ring():
     """A king wire (a core 3.40 mm thick under Cardinal's 3.34 mm steel wires: the cable's
     ``core.diameter``) opens layer 1's gaps, so its wires cannot vault: ``first_layer = "ring"``
     is refused in one line when the case is read, before any computing."""
-    king = {"name": "king", **_cardinal_table({"core": {"diameter": 3.40e-3}})}
-    layer = case_from_dict({"cable": king}).cable.layers[1]
+    king = cable_table(cardinal()) | {"name": "king"}
+    king["core"] |= {"diameter": 3.40e-3}
+    cable = case_from_dict({"cable": king}).cable
+    layer = cable.layers[1]
     assert helix_clearance(layer) - layer.wire.diameter > 0
     with pytest.raises(CaseError, match=r'first_layer = "ring".*do not touch one another'):
         case_from_dict({"cable": king, "contact": {"first_layer": "ring"}})
-    assert first_layer_lift(case_from_dict({"cable": king}).cable, "on_core") == 0.0
+    assert first_layer_lift(cable, "on_core") == 0.0
     with pytest.raises(CableError, match="first_layer 'vault' is unknown"):
         ContactSettings(first_layer="vault")
     with pytest.raises(CableError, match="gap_seed"):
         ContactSettings(gap_seed=-1)
     with pytest.raises(CaseError, match=r"\[contact\] gap_seed = 1.5: expected a whole number"):
         case_from_dict({"contact": {"gap_seed": 1.5}})
-
-
-def _cardinal_table(changes: dict) -> dict:
-    """Cardinal as a case file's [cable] table, with ``changes`` merged into its sections."""
-    c = cardinal()
-    core = c.layers[0]
-    table = {
-        "core": {
-            "diameter": core.wire.diameter,
-            "E": core.wire.E,
-            "nu": core.wire.nu,
-            "friction": core.friction,
-        },
-        "layer": [
-            {
-                "wires": lay.wires,
-                "diameter": lay.wire.diameter,
-                "E": lay.wire.E,
-                "nu": lay.wire.nu,
-                "lay_angle": lay.lay_angle,
-                "lay": lay.lay,
-                "friction": lay.friction,
-            }
-            for lay in c.layers[1:]
-        ],
-    }
-    table["core"] |= changes.get("core", {})
-    return table
 
 
 def test_a_vaulted_ring_takes_the_whole_fibre_pressure():

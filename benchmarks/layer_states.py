@@ -31,6 +31,10 @@ first; a state whose run stops says so in its row.
 
 from __future__ import annotations
 
+import strand  # noqa: F401  (dolfinx's environment first)
+
+# isort: split
+
 import argparse
 import csv
 import re
@@ -42,6 +46,10 @@ from pathlib import Path
 
 import numpy as np
 from harness import ROOT, stamp, table
+
+from strand.analytical import StickSlipLaw
+from strand.app.case import load_case
+from strand.cable.description import cardinal
 
 #: curvatures (1/m) at which M is reported: the held-back test's points, and the end of the leg
 KAPPAS = (0.0035, 0.0083, 0.0132, 0.0167, 0.049, 0.103, 0.143, 0.239, 0.428, 0.5)
@@ -67,8 +75,6 @@ EN50182 = {"steel": (16.0, 26.0), "inner": (10.0, 16.0), "outer": (10.0, 14.0)}
 def lay_angles(ratio_at: int) -> list[str]:
     """``--set`` items giving Cardinal's layers the shortest (``ratio_at`` 0) or longest (1) lay
     lengths EN 50182 allows, at their radii."""
-    from strand.cable.description import cardinal
-
     layers = cardinal().layers[1:]
     items = []
     for i, layer in enumerate(layers, start=1):
@@ -180,11 +186,6 @@ def main() -> None:
     parser.add_argument("--keep", type=Path, help="keep each state's run in this folder")
     args = parser.parse_args()
     ranks = 1 if args.quick else args.ranks
-
-    import strand  # noqa: F401  (dolfinx's environment first)
-    from strand.analytical import StickSlipLaw
-    from strand.app.case import load_case
-
     print(stamp())
     head = ["state", "M/κ / EI_max", *(f"M at {k:g}" for k in KAPPAS)]
     head += ["crossing force after tension 0|1 … 3|4", "slip onset κ 0|1 … 3|4", "cost"]

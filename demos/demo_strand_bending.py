@@ -97,23 +97,23 @@ for layer, expected in enumerate(reference["wire_force"]):
 # ## Bending: stick, slip and hysteresis
 #
 # On a span this short the layers barely slip at 1.5 kN with the cable's friction coefficients
-# (μ = 0.3 and 0.5): the cycle is nearly elastic. Friction decides it: the same case with μ = 0.05
+# (μ = 0.3 and 0.5): the cycle is nearly elastic. Friction decides it: the same case with μ = 0.1
 # slips, its bending stiffness falls as it is loaded, and a deflection remains when the load comes
 # back to zero: a hysteresis loop. This run writes no fields and no fatigue histories: its tables
 # and figures are all we look at.
 
 cable = tomllib.loads((resources.files("strand.cable.data") / "cardinal.toml").read_text())
 for table in (cable["core"], *cable["layer"]):
-    table["friction"] = 0.05
+    table["friction"] = 0.1
 quiet = {"output": {"fields": False}, "fatigue": {"outputs": False}}
 slippery = run_case(
-    case_from_dict({**settings, "cable": cable, **quiet}, source="demo, μ = 0.05"),
+    case_from_dict({**settings, "cable": cable, **quiet}, source="demo, μ = 0.1"),
     "results/demo_strand_bending/low_friction",
     overwrite=True,
 )
 
 fig, ax = plt.subplots(figsize=(6, 4.5))
-for run, label in ((result, "μ = 0.3 / 0.5 (Cardinal)"), (slippery, "μ = 0.05")):
+for run, label in ((result, "μ = 0.3 / 0.5 (Cardinal)"), (slippery, "μ = 0.1")):
     lateral = run.cycle_steps
     ax.plot(
         [0.0] + [1e3 * s.state.deflection for s in lateral],
@@ -141,7 +141,7 @@ assert not result.failure and not slippery.failure
 # A strand's bending stiffness lies between two bounds: EI_min, every wire bending about its own
 # axis (all layers slipping), and EI_max, the strand bending as one section (all stuck). The
 # midspan's moment and curvature (`moment_curvature.csv`, here the run's records) give the
-# secant stiffness M/κ. Along the first leg of the μ = 0.05 cycle it stays between the bounds
+# secant stiffness M/κ. Along the first leg of the μ = 0.1 cycle it stays between the bounds
 # and falls at every step as slip spreads; at the reversal the layers stick again (Masing), so
 # the first unloading step is stiffer than the last loading one by more than half again.
 

@@ -1,6 +1,6 @@
 """The default case with yesterday's solver settings beside today's, measured in one run.
 
-Run: .venv/bin/python benchmarks/speed.py [--quick] [variant …]   (--quick: 0.1 m to +0.5 kN;
+Run: .venv/bin/python benchmarks/speed.py [--quick] [variant …]   (--quick: 0.05 m to +0.5 kN;
 no variant named: those of DEFAULT_RUN)
 
 Every variant runs the whole default case (Cardinal, 1 m, 40 kN, saddle cycle to ±4.3 kN, every
@@ -28,7 +28,7 @@ import numpy as np
 from harness import peak_mib, print_result, run_variants, stamp, table
 
 ROOT = Path("results/benchmark_speed")
-QUICK = ["mesh.length=0.1", "load.lateral=500", "load.cycle=[1.0]"]  # a smoke test of the script
+QUICK = ["mesh.length=0.05", "load.lateral=500", "load.cycle=[1.0]"]  # a smoke test of the script
 
 #: Newton with full steps, the default before the critical-point line search
 BASIC = ['steps.line_search="basic"']

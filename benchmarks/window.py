@@ -1,7 +1,7 @@
 """The main job's window, one commit or setting against another in one run: time and load-step error.
 
 Run: .venv/bin/python benchmarks/window.py [--quick] [--ranks N] [variant …]
-(no variant named: those of DEFAULT_RUN; --quick: 0.15 m to 1 kN, a smoke test of the script)
+(no variant named: those of DEFAULT_RUN; --quick: 0.1 m to 1 kN, a smoke test of the script)
 
 The window is the main job (Cardinal, 1 m, 40 kN) up to the first peak: the tension, then the
 first leg of the saddle load to +4.3 kN, on 2 ranks, with no outputs (the library's
@@ -39,7 +39,7 @@ WINDOW = [
     "output.checkpoint=false",
     "fatigue.outputs=false",
 ]
-QUICK = ["mesh.length=0.15", "load.lateral=1000"]
+QUICK = ["mesh.length=0.1", "load.lateral=1000"]
 #: the issue's starting commit (issue 39)
 START = "ef5ccec"
 

@@ -77,8 +77,9 @@ def test_the_script_answers_help(name, tmp_path):
 
 @pytest.mark.slow
 def test_window_quick_runs(tmp_path):
-    """The main job's window at 0.15 m, today's default on 2 ranks: the stamp and one row."""
-    done = _run([str(BENCHMARKS / "window.py"), "--quick", "default"], tmp_path, 600)
+    """The main job's window at 0.1 m, today's default on 1 rank: the stamp and one row."""
+    args = [str(BENCHMARKS / "window.py"), "--quick", "--ranks", "1", "default"]
+    done = _run(args, tmp_path, 600)
     lines = done.stdout.splitlines()
     assert re.match(r"stamp: \d{4}-\d\d-\d\d \d\d:\d\d, commit \w+", lines[0])
     head = next(i for i, line in enumerate(lines) if line.startswith("variant"))
@@ -90,7 +91,7 @@ def test_window_quick_runs(tmp_path):
 
 @pytest.mark.slow
 def test_speed_quick_runs(tmp_path):
-    """The default case at 0.1 m to +0.5 kN with every output, one variant: the stamp, its row and
+    """The default case at 0.05 m to +0.5 kN with every output, one variant: the stamp, its row and
     its outputs' times."""
     variant = "default: cp line search"
     done = _run([str(BENCHMARKS / "speed.py"), "--quick", variant], tmp_path, 600)

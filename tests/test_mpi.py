@@ -428,38 +428,28 @@ def test_an_error_on_one_rank_ends_every_rank(tmp_path):
 
 @needs_mpirun
 @pytest.mark.slow
-def test_the_readme_run_command_gives_the_serial_numbers_on_2_ranks(tmp_path):
+def test_the_readme_run_command_gives_the_serial_numbers_on_2_ranks(tmp_path, quick_run):
     """``make run`` (the README's first command) starts a case on every core, NP MPI ranks: on
-    the quick case NP=2 takes NP=1's steps, and its results agree within what the packed ring's
-    soft mode leaves between runs (the balance tolerance: ``test_same_layer_pairs_…``)."""
+    the quick case NP=2 takes the serial run's steps (``quick_run``, the same case in one
+    process), and its results agree within what the packed ring's soft mode leaves between runs
+    (the balance tolerance: ``test_same_layer_pairs_…``)."""
     root = Path(__file__).resolve().parents[1]
-    outputs = {}
-    for n in (1, 2):
-        out = tmp_path / f"np{n}"
-        args = f"--out {out} --set output.plots=false --set output.fields=false"
-        done = subprocess.run(
-            [
-                "make",
-                "-s",
-                "-C",
-                str(root),
-                "run",
-                "CASE=cases/quick_1x6.toml",
-                f"NP={n}",
-                f"ARGS={args}",
-            ],
-            capture_output=True,
-            text=True,
-            timeout=600,
-        )
-        assert done.returncode == 0, done.stderr[-3000:]
-        assert done.stdout.count("done:") == 1
-        outputs[n] = out
-    head, a = table(outputs[1] / "steps.csv")
-    head_b, b = table(outputs[2] / "steps.csv")
+    out = tmp_path / "np2"
+    args = f"--out {out} --set output.plots=false --set output.fields=false"
+    done = subprocess.run(
+        ["make", "-s", "-C", str(root), "run", "CASE=cases/quick_1x6.toml", "NP=2", f"ARGS={args}"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout.count("done:") == 1 and "2 MPI ranks" in done.stdout
+    serial = quick_run["folder"]
+    head, a = table(serial / "steps.csv")
+    head_b, b = table(out / "steps.csv")
     assert head == head_b and a.shape == b.shape
     j = head.index("deflection_m")
     assert np.abs(a[:, j] - b[:, j]).max() <= 1e-4 * np.abs(a[:, j]).max()
-    _, na = table(outputs[1] / "axial_forces.csv")
-    _, nb = table(outputs[2] / "axial_forces.csv")
+    _, na = table(serial / "axial_forces.csv")
+    _, nb = table(out / "axial_forces.csv")
     assert np.abs(na[:, -1] - nb[:, -1]).max() <= 1e-4 * np.abs(na[:, -1]).max()

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 from functools import partial
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -138,3 +139,40 @@ def test_a_bending_run_reports_and_draws_where_the_pressure_goes(tmp_path):
         (layer,) = state
         assert layer.gap_closed
         assert layer.crossings_below + layer.ring == pytest.approx(layer.fibre, rel=0.05)
+
+
+def test_the_summary_and_layer_pressure_take_the_same_middle_half():
+    """The middle half is [L/4, 3L/4), half-open to round-off, wherever a sum or mean is taken
+    over it. The quick 1+6 has line pairs at z = L/4 and 3L/4 (3L/4 lands above 0.225 in
+    floating point); loaded alone, those at L/4 give the summary's mean contact force, which
+    left them out before the two were one function."""
+    from strand.app.summary import contact_force_line
+    from strand.model.layer_pressure import in_middle_half
+    from strand.model.pair_results import PairResults
+
+    case = load_case(Path(__file__).resolve().parents[1] / "cases" / "quick_1x6.toml")
+    L = case.mesh.length
+    assert in_middle_half([L / 4, L / 2, 3 * L / 4 - 1e-9], L).all()
+    assert not in_middle_half([L / 4 - 1e-9, 3 * L / 4, 0.225], L).any()
+    g = build_geometry(case.cable, L, case.mesh.h_max)
+    z = g.points[g.pairs.a, 2]
+    start = np.isclose(z, L / 4, rtol=0, atol=1e-12)
+    end = np.isclose(z, 3 * L / 4, rtol=0, atol=1e-12)
+    assert start.sum() == end.sum() == 6
+    P = len(z)
+    zeros, vectors = np.zeros(P), np.zeros((P, 3))
+    pairs = PairResults(
+        gap=zeros,
+        force=np.where(start, 100.0, 0.0),
+        traction=zeros,
+        slipping=np.zeros(P, bool),
+        friction=vectors,
+        normal=vectors,
+        slip=vectors,
+        sliding=vectors,
+        work=zeros,
+    )
+    inside = in_middle_half(z, L)
+    assert inside[start].all() and not inside[end].any()  # those at 3L/4 are the next span's
+    expected = 100.0 * start.sum() / g.pairs.tributary[inside].sum()
+    assert contact_force_line(g, pairs).endswith(f"0|1 {expected:.0f} N/m")

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..cable.geometry import LINE
-from ..model.layer_pressure import layer_wire_forces
+from ..model.layer_pressure import in_middle_half, layer_wire_forces
 from ..model.pair_results import PairResults
 from ..model.post import bending_stiffness_bounds, fibre_model
 from .run_result import RunResult
@@ -163,7 +163,7 @@ def contact_force_line(geometry, pairs: PairResults) -> str:
     of layer-1 wire (N/m), crossings per crossing (N)."""
     p = geometry.pairs
     z = geometry.points[p.a, 2]
-    middle = np.abs(z - geometry.length / 2) < geometry.length / 4
+    middle = in_middle_half(z, geometry.length)
     parts = []
     for i in range(len(geometry.cable.layers) - 1):
         sel = middle & (p.interface == i)

@@ -103,6 +103,15 @@ def fibre_pressure(geometry: StrandGeometry, wire_force: npt.ArrayLike) -> Array
     )
 
 
+def in_middle_half(z: npt.ArrayLike, length: float) -> npt.NDArray[np.bool_]:
+    """Whether heights ``z`` (m) lie in the middle half [L/4, 3L/4) of a span ``length`` (m).
+    Half-open, so that a sum over it divided by L/2 is per metre when points repeat along z
+    (a pair at each end would count twice), and to round-off: nodes at L/4 and 3L/4 land on
+    either side of the exact value."""
+    z, tol = np.asarray(z), 1e-12 * length
+    return (z >= 0.25 * length - tol) & (z < 0.75 * length - tol)
+
+
 def layer_wire_forces(
     layer: npt.ArrayLike,
     z: npt.ArrayLike,
@@ -113,10 +122,9 @@ def layer_wire_forces(
 ) -> Array:
     """Mean axial force (N) of the cells of each helical layer 1, 2, … (and first of the core,
     layer 0, with ``core``) whose midpoint ``z`` (m) lies in the middle half of the span
-    ``length``: within L/4 of midspan, ends included, as the set-ups' measuring zone
-    (``post.CellResults``' arrays)."""
+    ``length`` (``in_middle_half``; ``post.CellResults``' arrays)."""
     layer, z, axial = (np.asarray(v) for v in (layer, z, axial))
-    middle = np.abs(z - length / 2) <= length / 4
+    middle = in_middle_half(z, length)
     n = int(layer.max()) if len(layer) else 0
     return np.array([axial[middle & (layer == i)].mean() for i in range(0 if core else 1, n + 1)])
 
@@ -167,7 +175,7 @@ def layer_pressure(
     fibre = fibre_pressure(g, wire_force)
     p = g.pairs
     z_a = g.points[p.a, 2]
-    inside = np.abs(z_a - L / 2) <= L / 4
+    inside = in_middle_half(z_a, L)
     e_r = _radial(g, 0.5 * (x[p.a] + x[p.b]), 0.5 * (z_a + g.points[p.b, 2]), core)
     radial = crossings.force * np.einsum("ij,ij->i", crossings.normal, e_r)
     wire_of = np.searchsorted(g.wire_offsets, np.arange(len(g.points)), side="right") - 1
@@ -190,7 +198,7 @@ def layer_pressure(
         friction_terms = np.einsum("ij,ij->i", traction, er_a - er_b)
         axis = _radial_axis(g, g.points[s.a, 2], core)
         in_plane = np.linalg.norm(n - np.einsum("ij,ij->i", n, axis)[:, None] * axis, axis=1)
-        s_inside = np.abs(g.points[s.a, 2] - L / 2) <= L / 4
+        s_inside = in_middle_half(g.points[s.a, 2], L)
         s_wire = wire_of[s.a]
 
     out = []

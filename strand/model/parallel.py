@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -71,6 +72,10 @@ def abort_on_error(comm: MPI.Comm = MPI.COMM_WORLD) -> None:
     def hook(kind, value, traceback):
         previous(kind, value, traceback)
         sys.stderr.flush()
+        # mpirun forwards the ranks' output through its proxies, which the abort may stop
+        # before they have read it all: on a loaded machine the traceback's last line (the
+        # error itself) was once lost. Half a second lets them catch up.
+        time.sleep(0.5)
         comm.Abort(1)
 
     hook.aborts = True

@@ -16,6 +16,7 @@ from beam_cases import cantilever
 from forms import CircularSection, ReissnerBeam
 from strand.analytical import ei_min, poffenberger_swart
 from strand.app.cli import main
+from strand.app.fatigue.wire_stresses import repeating_damage
 from strand.app.history import read_history
 from strand.cable.description import cardinal
 from strand.cable.mesh import beam_space, polyline_mesh
@@ -31,7 +32,7 @@ from strand.fatigue import (
     shear_stress,
     surface_stress,
 )
-from strand.fatigue.cycles import cycle_steps, repeating_cycles
+from strand.fatigue.cycles import cycle_steps, repeating_cycles, repeating_ranges
 from strand.solver import LoadStepper, NodalLoad, NonlinearProblem
 from strand_cases import SEVEN_WIRE
 
@@ -341,3 +342,27 @@ def test_run_writes_pair_and_wire_histories_and_the_fatigue_report(tmp_path):
         assert len(list(csv.DictReader(f))) == 7
     text = (out / "fatigue.txt").read_text()
     assert "worst line contacts" in text and "Poffenberger–Swart" in text  # 1+6: no crossings
+
+
+def test_the_repeating_count_of_many_histories_at_once_is_each_ones_count():
+    """``repeating_ranges`` counts every column of an array as ``repeating_cycles`` counts it
+    alone: the same ranges, on random histories with ties, plateaus, constant and short ones;
+    and the damage of the wires' report is the Miner sum of those ranges."""
+    rng = np.random.default_rng(7)
+    for trial in range(600):
+        n, m = int(rng.integers(1, 30)), int(rng.integers(1, 5))
+        series = [
+            rng.normal(size=(n, m)),
+            rng.integers(-2, 3, size=(n, m)).astype(float),  # ties and plateaus
+            np.cumsum(rng.normal(size=(n, m)), axis=0),
+            np.sin(np.linspace(0, 5 * np.pi, n))[:, None] * rng.integers(0, 3, size=m),
+        ][trial % 4]
+        got = repeating_ranges(series)
+        for j in range(m):
+            alone = repeating_cycles(series[:, j]).range
+            np.testing.assert_allclose(np.sort(got[j][got[j] > 0]), np.sort(alone[alone > 0]))
+    sigma = 1e8 * np.cumsum(rng.normal(size=(40, 50)), axis=0)
+    curve = SN_CURVES["en1992-prestressing-steel"]
+    each = [miner_damage(repeating_cycles(s).range, 1.0, curve) for s in sigma.T]
+    np.testing.assert_allclose(repeating_damage(sigma, curve), each, rtol=1e-14)
+    assert np.isnan(repeating_damage(sigma, None)).all()

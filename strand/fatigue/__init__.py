@@ -10,7 +10,7 @@ per-step histories come from ``strand.app.history``; ``strand.app.fatigue.report
 together.
 """
 
-from .cycles import Cycles, rainflow_cycles
+from .cycles import Cycles, rainflow_cycles, repeating_cycles, repeating_ranges
 from .fretting import CrossingCycles, crossing_cycles, ruiz_parameters, stuck_throughout
 from .poffenberger import SpanCheck, span_check, span_error
 from .sn import SN_CURVES, SNCurve, miner_damage, wire_material
@@ -22,6 +22,8 @@ from .zones import ZONES, free_span, in_clamp_zone, lock_reach
 __all__ = [
     "Cycles",
     "rainflow_cycles",
+    "repeating_cycles",
+    "repeating_ranges",
     "CrossingCycles",
     "crossing_cycles",
     "ruiz_parameters",

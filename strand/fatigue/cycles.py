@@ -25,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 import rainflow
 
-__all__ = ["Cycles", "rainflow_cycles", "repeating_cycles", "cycle_steps"]
+__all__ = ["Cycles", "rainflow_cycles", "repeating_cycles", "repeating_ranges", "cycle_steps"]
 
 
 @dataclass(frozen=True)
@@ -79,6 +79,60 @@ def repeating_cycles(series) -> Cycles:
             rows.append((abs(v1 - v0), 0.5 * (v0 + v1), 1.0, order[k0], order[k1]))
             del stack[-3:-1]
     return _cycles(rows)
+
+
+def _compact(values: npt.NDArray[np.float64], keep: npt.NDArray[np.bool_]):
+    """The kept entries of each column of ``values`` (n, M) moved to its top, in order, NaN
+    below; and how many each column keeps."""
+    order = np.argsort(~keep, axis=0, kind="stable")
+    out = np.take_along_axis(np.where(keep, values, np.nan), order, axis=0)
+    return out, keep.sum(axis=0)
+
+
+def repeating_ranges(series) -> npt.NDArray[np.float64]:
+    """The ranges of ``repeating_cycles`` for each column of ``series`` (n steps, M histories)
+    at once: (M, C), padded with zeros (cycles of no range) to the largest count C. The same
+    count (rotation to the largest value, ``rainflow.reversals``, three-point rule) written
+    over all columns: a loop over the reversals, none over the histories."""
+    s = np.asarray(series, float)
+    if s.ndim != 2:
+        raise ValueError(f"series: (n steps, M histories) expected, got shape {s.shape}")
+    n, m = s.shape
+    if n < 2 or m == 0:
+        return np.zeros((m, 0))
+    # one period from the largest value round to it again
+    order = (np.argmax(s, axis=0) + np.arange(n + 1)[:, None]) % n
+    r = np.take_along_axis(s, order, axis=0)
+    # without repeated values, then the reversals: the ends and every change of direction
+    v, count = _compact(r, np.r_[np.ones((1, m), bool), r[1:] != r[:-1]])
+    d = np.diff(v, axis=0)
+    turns = np.zeros_like(v, dtype=bool)
+    turns[1:-1] = d[:-1] * d[1:] < 0
+    rows = np.arange(len(v))[:, None]
+    turns |= (rows == 0) | (rows == count - 1)
+    v, count = _compact(v, turns & (rows < count))
+    # the three-point rule on every column's stack at once
+    stack = np.zeros((m, len(v)))
+    depth = np.zeros(m, dtype=np.intp)
+    ranges = np.zeros((m, max(len(v) // 2, 1)))
+    found = np.zeros(m, dtype=np.intp)
+    cols = np.arange(m)
+    for k in range(len(v)):
+        push = cols[k < count]
+        stack[push, depth[push]] = v[k, push]
+        depth[push] += 1
+        while True:
+            c = cols[depth >= 3]
+            v0, v1, v2 = (stack[c, depth[c] - i] for i in (3, 2, 1))
+            closes = np.abs(v2 - v1) >= np.abs(v1 - v0)
+            if not closes.any():
+                break
+            c, v0, v1, v2 = c[closes], v0[closes], v1[closes], v2[closes]
+            ranges[c, found[c]] = np.abs(v1 - v0)
+            found[c] += 1
+            stack[c, depth[c] - 3] = v2
+            depth[c] -= 2
+    return ranges[:, : max(found.max(), 0)]
 
 
 def cycle_steps(start: int, end: int, n: int) -> npt.NDArray[np.intp]:

@@ -104,14 +104,13 @@ def crossing_results(
     def pick(x: Array) -> Array:
         return np.take_along_axis(x, worst[None, :], axis=0)[0]
 
-    damage = np.full(len(line), np.nan)
-    for k in range(len(line)):
-        sides = [
-            repeating_damage(s[:, k], curves[i])
-            for s, i in ((sigma_a, inner[k]), (sigma_b, outer[k]))
-        ]
-        if not np.all(np.isnan(sides)):
-            damage[k] = np.nanmax(sides)
+    sides = np.full((2, len(line)), np.nan)  # inner wire's side, outer wire's side
+    for side, (sigma_side, layers) in enumerate(((sigma_a, inner), (sigma_b, outer))):
+        for layer, curve in enumerate(curves):
+            mine = layers == layer
+            if curve is not None and mine.any():
+                sides[side, mine] = repeating_damage(sigma_side[:, mine], curve)
+    damage = np.fmax(sides[0], sides[1])  # the worse side; NaN where neither is assessed
     has = np.array([c is not None for c in curves])
     assessed = np.select(
         [has[inner] & has[outer], has[inner], has[outer]],

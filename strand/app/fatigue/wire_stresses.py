@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from ...fatigue.cycles import repeating_cycles
-from ...fatigue.sn import SN_CURVES, SNCurve, miner_damage
+from ...fatigue.cycles import repeating_ranges
+from ...fatigue.sn import SN_CURVES, SNCurve
 from ...fatigue.stress import shear_stress, surface_stress
 from ..history import History
 from .findings import ElementResults, WireResults, WireZone
@@ -38,13 +38,14 @@ def _curve_key(curve: SNCurve | None) -> str:
     return next((k for k, c in SN_CURVES.items() if c == curve), "custom")
 
 
-def repeating_damage(series: Array, curve: SNCurve | None) -> float:
-    """Miner damage of one repetition of a repeating stress history (Pa), NaN where no curve
-    applies."""
+def repeating_damage(series: Array, curve: SNCurve | None) -> Array:
+    """Miner damage of one repetition of each column of ``series`` (n steps, M histories) of
+    repeating stress (Pa): (M,), NaN where no curve applies."""
+    series = np.asarray(series, float)
     if curve is None:
-        return np.nan
-    cycles = repeating_cycles(series)
-    return miner_damage(cycles.range, cycles.count, curve)
+        return np.full(series.shape[1], np.nan)
+    ranges = repeating_ranges(series)  # (M, C), zero-padded: life inf, no damage
+    return np.sum(1.0 / curve.life(ranges / 2), axis=1)
 
 
 def element_results(
@@ -65,10 +66,11 @@ def element_results(
     rows = np.arange(len(worst))
     tau = shear_stress(sections["torque"], static["diameter"])
     damage = np.full(len(worst), np.nan)
-    for e in rows:
-        curve = curves[static["layer"][e]]
-        if curve is not None:
-            damage[e] = max(repeating_damage(sigma[:, e, k], curve) for k in range(n_points))
+    for layer, curve in enumerate(curves):
+        mine = np.flatnonzero(static["layer"] == layer)
+        if curve is not None and len(mine):
+            points = sigma[:, mine, :].reshape(len(sigma), -1)  # (S, elements × points)
+            damage[mine] = repeating_damage(points, curve).reshape(len(mine), -1).max(axis=1)
     return ElementResults(
         wire=np.asarray(static["wire"]),
         layer=np.asarray(static["layer"]),

@@ -132,7 +132,7 @@ def repeating_ranges(series) -> npt.NDArray[np.float64]:
             found[c] += 1
             stack[c, depth[c] - 3] = v2
             depth[c] -= 2
-    return ranges[:, : max(found.max(), 0)]
+    return ranges[:, : found.max()]
 
 
 def cycle_steps(start: int, end: int, n: int) -> npt.NDArray[np.intp]:

@@ -11,7 +11,7 @@ from ..model.checkpoint import CheckpointError, restore
 from ..model.parallel import on_root
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme
-from ..solver import ErrorControl, NewtonOptions
+from ..solver import ErrorControl, NewtonOptions, keep_freed_memory
 from ..solver.convergence import STALL_AFTER
 from .case import check_loads_given
 from .case_toml import case_toml
@@ -127,6 +127,7 @@ def build_problem(
     size when it has more than ``LARGE_MESH`` elements. ``kind``: the case's set-up kind, as
     the run resolved it (None: resolved here, for a caller that starts from the case)."""
     kind = kind_of(case) if kind is None else kind
+    keep_freed_memory()  # each LU factorisation reuses the last one's workspace
     geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
     if len(geometry.cells) > LARGE_MESH:
         print(

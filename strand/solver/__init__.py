@@ -18,11 +18,13 @@ it. It
 
 Modules: ``terms`` (the pair terms and their assembly), ``convergence`` (Newton's settings and
 tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and its records),
-``interrupt`` (Ctrl-C), ``ordering`` (the MUMPS ordering that fills least).
+``interrupt`` (Ctrl-C), ``ordering`` (the MUMPS ordering that fills least), ``memory`` (freed
+memory kept for the next factorisation).
 """
 
 from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
 from .interrupt import Interrupt
+from .memory import keep_freed_memory
 from .problem import NonlinearProblem
 from .stepping import (
     ErrorControl,
@@ -48,4 +50,5 @@ __all__ = [
     "LoadStepFailure",
     "RunInterrupted",
     "Interrupt",
+    "keep_freed_memory",
 ]

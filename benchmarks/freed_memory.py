@@ -23,15 +23,9 @@ import time
 from pathlib import Path
 
 from harness import peak_mib, print_result, run_variants, stamp, table
+from window import WINDOW  # the main job's window (this folder, the script's first path)
 
 ROOT = Path("results/benchmark_freed_memory")
-WINDOW = [
-    "load.cycle=[1.0]",
-    "output.fields=false",
-    "output.plots=false",
-    "output.checkpoint=false",
-    "fatigue.outputs=false",
-]
 #: name: the environment's STRAND_KEEP_FREED_MEMORY
 VARIANTS = {"glibc defaults": "0", "freed memory kept": "1"}
 

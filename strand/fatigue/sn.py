@@ -136,13 +136,13 @@ SN_CURVES = {
 }
 
 
-def miner_damage(ranges, counts, curve: SNCurve) -> float:
+def miner_damage(ranges, counts, curve: SNCurve) -> float | Array:
     """Miner's damage Σ nᵢ/N(σ_a,i) of cycles of stress ``ranges`` (Pa, peak to peak; σ_a is half)
-    counted ``counts`` times (1 full, ½ half cycles)."""
-    ranges, counts = np.asarray(ranges, float), np.asarray(counts, float)
-    if ranges.size == 0:
-        return 0.0
-    return float(np.sum(counts / curve.life(ranges / 2)))
+    counted ``counts`` times (1 full, ½ half cycles). The sum runs over the last axis: ranges
+    (M, C) of M histories give their M damages (cycles of zero range add none)."""
+    ranges, counts = np.atleast_1d(np.asarray(ranges, float)), np.asarray(counts, float)
+    damage = np.sum(counts / curve.life(ranges / 2), axis=-1)
+    return float(damage) if damage.ndim == 0 else damage
 
 
 #: wires stiffer than this are steel, the others aluminium (steel 180–210 GPa, Al 55–70 GPa)

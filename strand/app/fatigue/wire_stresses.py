@@ -11,7 +11,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ...fatigue.cycles import repeating_ranges
-from ...fatigue.sn import SN_CURVES, SNCurve
+from ...fatigue.sn import SN_CURVES, SNCurve, miner_damage
 from ...fatigue.stress import shear_stress, surface_stress
 from ..history import History
 from .findings import ElementResults, WireResults, WireZone
@@ -44,8 +44,7 @@ def repeating_damage(series: Array, curve: SNCurve | None) -> Array:
     series = np.asarray(series, float)
     if curve is None:
         return np.full(series.shape[1], np.nan)
-    ranges = repeating_ranges(series)  # (M, C), zero-padded: life inf, no damage
-    return np.sum(1.0 / curve.life(ranges / 2), axis=1)
+    return miner_damage(repeating_ranges(series), 1.0, curve)  # (M, C), padded with no range
 
 
 def element_results(

@@ -12,9 +12,11 @@ import pytest
 
 from strand.app.case import load_case
 from strand.app.run import run_case
+from strand.app.summary import contact_force_line
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
-from strand.model.layer_pressure import layer_pressure, layer_wire_forces
+from strand.model.layer_pressure import in_middle_half, layer_pressure, layer_wire_forces
+from strand.model.pair_results import PairResults
 from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
 from strand.setups.saddle import SaddleTest
@@ -146,10 +148,6 @@ def test_the_summary_and_layer_pressure_take_the_same_middle_half():
     over it. The quick 1+6 has line pairs at z = L/4 and 3L/4 (3L/4 lands above 0.225 in
     floating point); loaded alone, those at L/4 give the summary's mean contact force, which
     left them out before the two were one function."""
-    from strand.app.summary import contact_force_line
-    from strand.model.layer_pressure import in_middle_half
-    from strand.model.pair_results import PairResults
-
     case = load_case(Path(__file__).resolve().parents[1] / "cases" / "quick_1x6.toml")
     L = case.mesh.length
     assert in_middle_half([L / 4, L / 2, 3 * L / 4 - 1e-9], L).all()

@@ -68,6 +68,7 @@ VARIANTS = _with_halved(
         START: Variant(START),
         "default": Variant(None),
         "two-node same-layer pairs": Variant(None, ['contact.same_layer_stencil="node"']),
+        "microslip": Variant(None, ['contact.compliance="hertz_microslip"']),
         "balance 1e-3": Variant(None, ["steps.balance=1e-3"]),
     }
 )

@@ -38,6 +38,7 @@ _API = {
     "HertzPointLaw": "strand.contact",
     "LinePenaltyLaw": "strand.contact",
     "Mindlin": "strand.contact",
+    "MindlinDeresiewicz": "strand.contact",
     "NodeChains": "strand.contact",
     "NodePairs": "strand.contact",
     "NormalLaw": "strand.contact",
@@ -162,6 +163,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .contact import HertzPointLaw as HertzPointLaw
     from .contact import LinePenaltyLaw as LinePenaltyLaw
     from .contact import Mindlin as Mindlin
+    from .contact import MindlinDeresiewicz as MindlinDeresiewicz
     from .contact import NodeChains as NodeChains
     from .contact import NodePairs as NodePairs
     from .contact import NormalLaw as NormalLaw

@@ -22,6 +22,7 @@ from strand.contact.kinematics import (
     stencil_nodes,
     tangent_map,
 )
+from strand.contact.microslip import MindlinDeresiewicz
 from strand.contact.normal_laws import HertzLineLaw, HertzPointLaw, PenaltyLaw
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
@@ -33,10 +34,12 @@ from strand_cases import check_state_and_tangent, nineteen_wire, seven_wire
 R_A, R_B = 1.5e-3, 2.0e-3  # m
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6
 KINDS = [(n, line) for n in NORMALS for line in (False, True)]
+HERTZ = ("hertz", "hertz_microslip")
 
 
 def pair_laws(compliance: str, line: bool, angle: float, n_pairs: int):
-    """Penalty + elastic slip (K_N, G_LIM), or Hertz + Mindlin for steel wires of R_A, R_B."""
+    """Penalty + elastic slip (K_N, G_LIM), or Hertz + Mindlin (or Mindlin–Deresiewicz's
+    microslip) for steel wires of R_A, R_B."""
     full = np.full(n_pairs, 1.0)
     if compliance == "penalty":
         return PenaltyLaw(K_N * full), ElasticSlip(MU * full, G_LIM)
@@ -46,7 +49,8 @@ def pair_laws(compliance: str, line: bool, angle: float, n_pairs: int):
         if line
         else HertzPointLaw(point_coefficient(R_A, R_B, angle, 2.1e11, 0.3, 2.1e11, 0.3) * full)
     )
-    return normal, Mindlin(MU * full, mindlin_ratio(2.1e11, 0.3, 2.1e11, 0.3))
+    kind = MindlinDeresiewicz if compliance == "hertz_microslip" else Mindlin
+    return normal, kind(MU * full, mindlin_ratio(2.1e11, 0.3, 2.1e11, 0.3))
 
 
 def crossed_pair(
@@ -127,14 +131,14 @@ def test_gap_hessian_matches_finite_differences(normal, line):
 @pytest.mark.parametrize(
     ("normal", "line", "compliance", "slip", "offset"),
     [(n, line, "penalty", "surface", 0.0) for n, line in KINDS]
-    + [("director", line, "hertz", "surface", 0.0) for line in (False, True)]
+    + [("director", line, c, "surface", 0.0) for line in (False, True) for c in HERTZ]
     + [
         (n, line, c, "centreline", 0.0)
         for n in ("frozen", "director")
         for line in (False, True)
         for c in ("penalty", "hertz")
     ]
-    + [("director", True, c, "surface", 1.5e-3) for c in ("penalty", "hertz")],
+    + [("director", True, c, "surface", 1.5e-3) for c in ("penalty", *HERTZ)],
 )
 def test_pair_tangent_matches_finite_differences_open_stick_slip(
     normal, line, compliance, slip, offset

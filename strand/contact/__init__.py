@@ -11,6 +11,7 @@ from .element import resolve_normal
 from .errors import ContactError
 from .friction_laws import ElasticSlip, FrictionLaw, Mindlin
 from .hertz import hertz_mindlin
+from .microslip import MindlinDeresiewicz
 from .nodes import BeamNodes, beam_nodes, dof_values, locate_nodes
 from .normal_laws import HertzLineLaw, HertzPointLaw, LinePenaltyLaw, NormalLaw, PenaltyLaw
 from .pairs import NodePairs, contact_terms, hertz_laws, node_pairs
@@ -26,6 +27,7 @@ __all__ = [
     "HertzPointLaw",
     "LinePenaltyLaw",
     "Mindlin",
+    "MindlinDeresiewicz",
     "NodeChains",
     "NodePairs",
     "NormalLaw",

@@ -18,7 +18,8 @@ else scaled back to μp t_tr/‖t_tr‖ (slip). The laws differ in K_T only:
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -91,7 +92,9 @@ def coulomb_return(
 class FrictionTerms:
     """What a friction law adds at an evaluation: residual (P, m) and tangent (P, m, M) (None
     without the Jacobian), traction t (P, 3), N, slipping flags, the slip Δg_T (P, 3), m, of the
-    surface points since the last converged step, and the stick stiffness K_T (P,), N/m."""
+    surface points since the last converged step, the stick stiffness K_T (P,), N/m, and the
+    law's own history (``FrictionLaw.initial_history``) as it stands if this evaluation is
+    committed."""
 
     residual: Array
     tangent: Array | None
@@ -99,6 +102,7 @@ class FrictionTerms:
     slipping: npt.NDArray[np.bool_]
     slip: Array
     stiffness: Array
+    history: dict[str, Array] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -106,6 +110,10 @@ class FrictionLaw(ABC):
     """Coulomb friction (coefficients ``mu`` (P,)) with an elastic stick branch."""
 
     mu: Array
+
+    #: names of the discrete choices of a step that ``terms`` reports in its history and takes
+    #: back in ``history`` to keep them (``PairGroup.SETTLE``); none for a Coulomb law
+    CHOICES: ClassVar[tuple[str, ...]] = ()
 
     @property
     def active(self) -> bool:
@@ -115,27 +123,49 @@ class FrictionLaw(ABC):
     def stiffness(self, p_start: Array, normal: NormalLaw) -> Array:
         """K_T (P,) in N/m from the normal forces at the start of the step."""
 
+    def initial_history(self, n_pairs: int) -> dict[str, Array]:
+        """Per-pair arrays the law keeps between steps beyond the traction, normal and normal
+        force that every law keeps (none here); a group commits them with the converged step."""
+        return {}
+
     def terms(
-        self, S, dq, p, dp_dq, p_old, t_old, n_old, *, normal: NormalLaw, jacobian: bool
+        self,
+        S,
+        dq,
+        p,
+        dp_dq,
+        p_old,
+        t_old,
+        n_old,
+        *,
+        normal: NormalLaw,
+        jacobian: bool,
+        history: dict[str, Array] | None = None,
     ) -> FrictionTerms:
         """Friction of all pairs on a slip operator S (P, 3, m): Δg_T = S Δq.
 
         Returns the residual Sᵀt (P, m), the tangent Sᵀ(∂t/∂Δg_T)S + Sᵀ(∂t/∂p)⊗∂p/∂q (P, m, M)
         over all M dofs of the pair's layout (``dp_dq`` (P, M); None without ``jacobian``), the
         traction, the slipping flags (pairs at the cap with a positive normal force), the slip
-        Δg_T and the stick stiffness K_T of the step.
+        Δg_T and the stick stiffness K_T of the step. ``history``: the law's committed history
+        (``initial_history``; none for a Coulomb law with a linear stick).
         """
         mu = np.broadcast_to(np.asarray(self.mu, float), p.shape)
         slip = np.einsum("pij,pj->pi", S, dq)
         k_t = self.stiffness(p_old, normal)
-        ret = coulomb_return(t_old, slip, n_old, p, mu, k_t)
+        ret, after = self._return(t_old, slip, n_old, p, p_old, mu, k_t, history)
         f = np.einsum("pij,pi->pj", S, ret.traction)
         K = None
         if jacobian:
             St = S.transpose(0, 2, 1)
             K = np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq)
             K[:, :, : S.shape[2]] += St @ ret.d_slip @ S
-        return FrictionTerms(f, K, ret.traction, ret.slipping & (p > 0), slip, k_t)
+        return FrictionTerms(f, K, ret.traction, ret.slipping & (p > 0), slip, k_t, after)
+
+    def _return(self, t_old, slip, n_old, p, p_old, mu, k_t, history):
+        """The traction map of the step (``CoulombResult``) and the law's history after it: a
+        linear stick K_T and the radial return onto μp (``coulomb_return``)."""
+        return coulomb_return(t_old, slip, n_old, p, mu, k_t), {}
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,9 @@ __all__ = ["ContactState", "FrictionHistory", "PairKinematics", "PairGroup", "ta
 
 Array = npt.NDArray[np.float64]
 
+#: the prefix of the friction law's own history arrays in ``history_arrays``
+LAW = "friction_"
+
 
 @dataclass
 class ContactState:
@@ -113,7 +116,17 @@ class PairGroup:
 
     Subclasses implement ``_kinematics(W, jacobian)`` (W = w[stencils], (P, k, 6)) and may extend
     ``_commit_kinematics``/``_rollback_kinematics`` for the state they keep.
+
+    A friction law with discrete choices in a step (``FrictionLaw.CHOICES``: Mindlin–Deresiewicz's
+    reversals) makes them afresh until ``SETTLE`` tangents of a step have been evaluated, then
+    keeps those of the last one until the step is committed or rolled back, so that Newton meets
+    no kink where a pair barely moves (as semismooth Newton methods freeze their active set;
+    benchmarks/window.py measures it).
     """
+
+    #: tangent evaluations of a step after which the law's choices are kept (2: those of the
+    #: first Newton iterate, which has moved every pair the way the step takes it)
+    SETTLE = 2
 
     def __init__(
         self,
@@ -134,6 +147,10 @@ class PairGroup:
         self._p_old = np.zeros(n_pairs)
         self._last: Array | None = None  # W of the last evaluation
         self._friction: tuple[Array, Array] | None = None  # (Δg_T, K_T) of the last evaluation
+        #: the friction law's own history (``FrictionLaw.initial_history``), committed per step
+        self._law_history = friction_law.initial_history(n_pairs) if friction_law else {}
+        self._law_next: dict[str, Array] = {}  # ... as the last evaluation leaves it
+        self._tangents, self._choices = 0, {}  # tangent evaluations since the step began
         self.history = FrictionHistory.zeros(n_pairs)
         self.state = ContactState(
             np.zeros(n_pairs),
@@ -149,6 +166,11 @@ class PairGroup:
     @property
     def friction(self) -> bool:
         return self.friction_law is not None and self.friction_law.active
+
+    def _kept_choices(self) -> dict[str, Array]:
+        """The law's choices (``FrictionLaw.CHOICES``) at the last tangent evaluation, once
+        ``SETTLE`` of them have passed in this solve; none before."""
+        return self._choices if self._tangents >= self.SETTLE else {}
 
     def _kinematics(self, W: Array, jacobian: bool) -> PairKinematics:
         raise NotImplementedError
@@ -178,6 +200,7 @@ class PairGroup:
                 self._n_old,
                 normal=self.normal_law,
                 jacobian=jacobian,
+                history=self._law_history | self._kept_choices(),
             )
             m = S.shape[2]
             f[:, :m] += ft.residual
@@ -185,6 +208,10 @@ class PairGroup:
                 K[:, :m, :] += ft.tangent
             traction, slipping = ft.traction, ft.slipping
             self._friction = (ft.slip, ft.stiffness)
+            self._law_next = ft.history
+            if jacobian:
+                self._tangents += 1
+                self._choices = {k: ft.history[k] for k in self.friction_law.CHOICES}
         self.state.fill(kin.gap, p, traction, kin.normal, slipping)
         self._last = W
         return f, K
@@ -204,6 +231,9 @@ class PairGroup:
             h.sliding += sliding
             h.work += work
             self._friction = None  # counted once
+            choices = self.friction_law.CHOICES
+            self._law_history = {k: v for k, v in self._law_next.items() if k not in choices}
+            self._tangents, self._choices = 0, {}
         self._t_old = tangential_part(self.state.traction, n)  # onto the new tangent plane
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
@@ -213,6 +243,8 @@ class PairGroup:
         """Forget the current step (history is only changed by ``commit``)."""
         self._last = None
         self._friction = None
+        self._law_next = {}
+        self._tangents, self._choices = 0, {}
         self._rollback_kinematics()
 
     # -- checkpoints -------------------------------------------------------------------------------
@@ -250,6 +282,7 @@ class PairGroup:
             s.slipping,
         )
         out = {k: np.array(v, copy=True) for k, v in zip(self.HISTORY, values, strict=True)}
+        out |= {LAW + k: np.array(v, copy=True) for k, v in self._law_history.items()}
         return out | {k: np.array(v, copy=True) for k, v in self._kinematics_history().items()}
 
     def restore_history(self, arrays: dict[str, Array], w: Array) -> None:
@@ -260,8 +293,11 @@ class PairGroup:
         h = self.history
         h.slip[...], h.sliding[...], h.work[...] = a["slip"], a["sliding"], a["work"]
         self.state.fill(a["gap"], a["force"], a["traction"], a["normal"], a["slipping"])
+        for k in self._law_history:
+            self._law_history[k] = a[LAW + k]
         self._restore_kinematics_history(a)
-        self._last, self._friction = None, None
+        self._last, self._friction, self._law_next = None, None, {}
+        self._tangents, self._choices = 0, {}
         self._commit_kinematics(w[self.stencils])
 
     def _kinematics_history(self) -> dict[str, Array]:

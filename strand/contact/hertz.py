@@ -30,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .friction_laws import FrictionLaw, Mindlin
+from .microslip import MindlinDeresiewicz
 from .normal_laws import HertzLineLaw, HertzPointLaw, NormalLaw
 
 __all__ = [
@@ -123,13 +124,26 @@ def line_contact(r1, r2, E1, nu1, E2, nu2, line_load) -> tuple[Array, Array]:
 
 
 def hertz_mindlin(
-    line: bool, radius_a, radius_b, crossing_angle, tributary, *, E_a, nu_a, E_b, nu_b, mu=None
+    line: bool,
+    radius_a,
+    radius_b,
+    crossing_angle,
+    tributary,
+    *,
+    E_a,
+    nu_a,
+    E_b,
+    nu_b,
+    mu=None,
+    microslip: bool = False,
 ) -> tuple[NormalLaw, FrictionLaw | None]:
     """The laws of elastic wires in contact, from their radii (m) and moduli (Pa) alone.
 
     Crossings: ``HertzPointLaw`` of cylinders crossing at ``crossing_angle`` (rad); line pairs:
     ``HertzLineLaw`` over their ``tributary`` lengths (m). Friction: ``Mindlin`` with Coulomb
-    coefficients ``mu`` (None: frictionless). Values are per pair (P,) or one for all.
+    coefficients ``mu`` (None: frictionless), or with ``microslip`` Mindlin–Deresiewicz's curve
+    up to gross slip (``strand.contact.microslip.MindlinDeresiewicz``). Values are per pair (P,)
+    or one for all.
     """
     r_a = np.asarray(radius_a, float)
     P = len(r_a)
@@ -145,6 +159,7 @@ def hertz_mindlin(
         law = HertzPointLaw(point_coefficient(r_a, r_b, angle, E_a, nu_a, E_b, nu_b))
     if mu is None:
         return law, None
-    return law, Mindlin(
+    kind = MindlinDeresiewicz if microslip else Mindlin
+    return law, kind(
         np.broadcast_to(np.asarray(mu, float), (P,)).copy(), mindlin_ratio(E_a, nu_a, E_b, nu_b)
     )

@@ -117,9 +117,10 @@ def _penalty(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
     return law, None if wires.mu is None else ElasticSlip(wires.mu, settings.g_lim)
 
 
-def _hertz(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
+def _hertz(wires: Wires, settings, microslip: bool = False) -> tuple[NormalLaw, FrictionLaw | None]:
     """Hertz crossed cylinders at the crossing angle, or Hertz line contact over the tributary
-    length, and Mindlin's initial stick stiffness (``contact.hertz.hertz_mindlin``)."""
+    length, and Mindlin's initial stick stiffness (``contact.hertz.hertz_mindlin``); with
+    ``microslip``, Mindlin–Deresiewicz's curve from it to gross slip."""
     w = wires
     return hertz_mindlin(
         w.line,
@@ -132,8 +133,15 @@ def _hertz(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
         E_b=w.E_b,
         nu_b=w.nu_b,
         mu=w.mu,
+        microslip=microslip,
     )
+
+
+def _hertz_microslip(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:
+    """The "hertz" compliance with Mindlin–Deresiewicz's microslip (``contact.microslip``)."""
+    return _hertz(wires, settings, microslip=True)
 
 
 register_compliance("penalty", _penalty, uses=PENALTY_SETTINGS)
 register_compliance("hertz", _hertz)
+register_compliance("hertz_microslip", _hertz_microslip)

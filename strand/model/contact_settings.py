@@ -37,7 +37,9 @@ class ContactSettings:
             current normal force: Hertz crossed cylinders at the crossing angle and Hertz line
             contact core | layer 1 for the normal, Mindlin's initial stiffness for the stick;
             ``strand.contact.hertz``) or "penalty" (the seed paper's: a penalty K_N, and friction
-            reaching μP after an elastic slip g_lim), or another registered one
+            reaching μP after an elastic slip g_lim), or "hertz_microslip" ("hertz" with
+            Mindlin–Deresiewicz's microslip from Mindlin's stick to gross slip, without a kink:
+            ``strand.contact.microslip``), or another registered one
             (``strand.model.compliances.register_compliance``). k_point, k_line and g_lim apply
             to "penalty" (and any compliance registered as using them) only. The default has no
             free parameter: every stiffness follows from the wires.

@@ -226,29 +226,31 @@ def test_the_law_history_goes_through_a_checkpoint():
 
 def test_reversal_choices_are_kept_from_the_first_iterate_on():
     """Within a step a pair's reversal is chosen afresh until ``SETTLE`` tangents have been
-    evaluated, then kept (a Newton iterate going back and forth across the reversal meets no
-    kink); a rolled-back step chooses again."""
+    evaluated, then kept, for residuals and tangents alike (an iterate going back and forth
+    across the reversal meets no kink); a rolled-back step chooses again."""
     group = crossed_pair()
     w, P, k0 = pressed(group)
     along = np.array([1.0, 0.0, 0.0])
     span = 1.5 * MU * P / k0
     drive(group, w, [0.5 * span], along)  # loaded forward on the virgin curve
     t_old = group.state.traction[0] @ along
+    mu_p = MU * P
 
-    def traction(d):
+    def traction(d, jacobian=True):
         w2 = w.copy()
         w2[1, :3] += (0.5 * span + d) * along
-        group.evaluate(w2, True)
-        return group.state.traction[0] @ along
+        group.evaluate(w2, jacobian)
+        return group.state.traction[0] @ along, bool(group._law_next["reversed"][0])
 
     assert group.SETTLE == 2
-    back = [traction(-0.01 * span) for _ in range(group.SETTLE)]  # reversed: Masing's branch
-    assert back[0] < t_old and group._law_next["reversed"][0]
-    forward = traction(0.01 * span)  # kept: still on the reversal branch, stiff (K₀)
-    assert group._law_next["reversed"][0]
-    assert forward - t_old == pytest.approx(2 * virgin(0.005 * span, MU * P, k0), rel=1e-9)
+    t, reversed_ = traction(0.01 * span, jacobian=False)  # a residual first: chosen afresh
+    assert not reversed_ and t == pytest.approx(virgin(0.51 * span, mu_p, k0), rel=1e-9)
+    for _ in range(group.SETTLE):  # back: reversed, on Masing's branch
+        t, reversed_ = traction(-0.01 * span)
+        assert reversed_ and t == pytest.approx(t_old - 2 * virgin(0.005 * span, mu_p, k0))
+    for jacobian in (False, True):  # kept: forward on the reversal branch, stiff (K₀)
+        t, reversed_ = traction(0.01 * span, jacobian)
+        assert reversed_ and t == pytest.approx(t_old + 2 * virgin(0.005 * span, mu_p, k0))
     group.rollback()
-    fresh = traction(0.01 * span)  # chosen afresh: the virgin curve goes on, softer
-    assert not group._law_next["reversed"][0]
-    assert fresh == pytest.approx(virgin(0.51 * span, MU * P, k0), rel=1e-9)
-    assert fresh - t_old < forward - t_old
+    t, reversed_ = traction(0.01 * span)  # chosen afresh: the virgin curve goes on, softer
+    assert not reversed_ and t == pytest.approx(virgin(0.51 * span, mu_p, k0), rel=1e-9)

@@ -123,6 +123,14 @@ class FrictionLaw(ABC):
     def stiffness(self, p_start: Array, normal: NormalLaw) -> Array:
         """K_T (P,) in N/m from the normal forces at the start of the step."""
 
+    def choose(
+        self, slip: Array, t_old: Array, n_old: Array, p_old: Array, history
+    ) -> dict[str, Array]:
+        """The step's ``CHOICES`` (each (P,)) for the slip Δg_T (P, 3) since the last converged
+        step (traction t_old, normal n_old, normal force p_old, the law's ``history``); none
+        here."""
+        return {}
+
     def initial_history(self, n_pairs: int) -> dict[str, Array]:
         """Per-pair arrays the law keeps between steps beyond the traction, normal and normal
         force that every law keeps (none here); a group commits them with the converged step."""

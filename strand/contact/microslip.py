@@ -31,7 +31,8 @@ At constant P and along one direction this is Mindlin–Deresiewicz's curve and 
 exactly (``tests/test_microslip.py`` holds a crossed pair's loop and its energy per cycle to the
 closed forms). A branch that reaches the traction −t_r of its anchor, or the cap, goes on along
 the virgin curve (Masing's memory of one loop: symmetric cycles close on the curve they left);
-so does a pair that opens. For line contact (parallel or near-parallel wires) the same curve is
+so does a pair that opens. In two directions, "reaches −t_r" reads: |t| ≥ |t_r| with
+(t − t_r)·t_r < 0 (a small loop left sideways is left behind too). For line contact (parallel or near-parallel wires) the same curve is
 used with the line law's K₀: Cattaneo–Mindlin's strip has a logarithmic compliance that depends
 on the contact's extent, so the point-contact shape stands for it (stated in docs/theory.md).
 """
@@ -76,6 +77,26 @@ def _distance(tau: Array, capacity: Array, k0: Array) -> Array:
     )
 
 
+def tangential_part(t: Array, n: Array) -> Array:
+    """t (P, 3) projected on the planes normal to n (P, 3)."""
+    return t - np.einsum("pi,pi->p", t, n)[:, None] * n
+
+
+#: a branch's traction below this fraction of μP₀ is round-off: nothing to reverse from
+NEGLIGIBLE = 1e-9
+
+
+def reversal(
+    slip: Array, t_old: Array, normal: Array, anchor: Array, cap: Array
+) -> npt.NDArray[np.bool_]:
+    """Whether each pair's slip Δg_T goes against its branch: Δg_T·τ₀ < 0, τ₀ = t_old − t_r on
+    the plane normal to ``normal``, where |τ₀| is more than round-off (``NEGLIGIBLE`` × the
+    pair's Coulomb limit ``cap`` = μP₀, N)."""
+    tau0 = tangential_part(t_old, normal) - tangential_part(anchor, normal)
+    real = np.linalg.norm(tau0, axis=1) > NEGLIGIBLE * cap
+    return (np.einsum("pi,pi->p", slip, tau0) < 0) & real
+
+
 def microslip_return(
     t_old: Array,
     slip: Array,
@@ -107,14 +128,12 @@ def microslip_return(
     """
     n = len(p)
     eye = np.broadcast_to(np.eye(3), (n, 3, 3))
-    plane = eye - normal[:, :, None] * normal[:, None, :]
-    t0 = np.einsum("pij,pj->pi", plane, t_old)
-    t_r = np.einsum("pij,pj->pi", plane, anchor)
+    t0, t_r = (tangential_part(t, normal) for t in (t_old, anchor))
     tau0 = t0 - t_r
     size0 = np.linalg.norm(tau0, axis=1)
-    reverse = np.einsum("pi,pi->p", slip, tau0) < 0
-    if decided is not None:
-        reverse = decided
+    if decided is None:
+        decided = reversal(slip, t_old, normal, anchor, mu * p_start)
+    reverse = decided
     c = np.where(reverse, 2.0, branch)
     start = np.where(reverse[:, None], t0, t_r)
     s0 = np.where(reverse, 0.0, _distance(size0, c * mu * p_start, k0))
@@ -144,8 +163,10 @@ def microslip_return(
     span = 1.5 * c * mu * p_pos / np.where(k0 > 0, k0, 1.0)
     saturated = (k0 > 0) & (x >= span)
     # the history if this evaluation is committed: the branch, or the virgin curve again
+    # a reversal branch past its anchor's level, away from it: the loop closed (1D: at −t_r)
     passed = np.linalg.norm(traction, axis=1) >= np.linalg.norm(start, axis=1)
-    rejoin = capped | (p <= 0) | ((c == 2) & passed & (np.einsum("pi,pi->p", traction, start) < 0))
+    away = np.einsum("pi,pi->p", traction - start, start) < 0
+    rejoin = capped | (p <= 0) | ((c == 2) & passed & away)
     history = {
         "anchor": np.where(rejoin[:, None], 0.0, start),
         "branch": np.where(rejoin, 1.0, c),
@@ -179,6 +200,11 @@ class MindlinDeresiewicz(Mindlin):
 
     def initial_history(self, n_pairs: int) -> dict[str, Array]:
         return {"anchor": np.zeros((n_pairs, 3)), "branch": np.ones(n_pairs)}
+
+    def choose(self, slip, t_old, n_old, p_old, history):
+        """A pair reverses where its slip goes against its branch, Δg_T·(t_old − t_r) < 0."""
+        mu = np.broadcast_to(np.asarray(self.mu, float), p_old.shape)
+        return {"reversed": reversal(slip, t_old, n_old, history["anchor"], mu * p_old)}
 
     def _return(self, t_old, slip, n_old, p, p_old, mu, k_t, history):
         if history is None:

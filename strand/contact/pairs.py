@@ -270,12 +270,14 @@ def contact_terms(
 
 
 def hertz_laws(
-    pairs: NodePairs, E_a, nu_a, E_b, nu_b, mu=None
+    pairs: NodePairs, E_a, nu_a, E_b, nu_b, mu=None, *, microslip: bool = False
 ) -> tuple[NormalLaw, FrictionLaw | None]:
     """Contact laws of elastic wires from their radii and moduli (Pa) alone: Hertz crossed
     cylinders at the pairs' crossing angle, or Hertz line contact over the tributary length, and
-    Mindlin's initial tangential stiffness with Coulomb coefficients ``mu`` (None: frictionless).
-    Material values may be one for all or one per pair (``hertz.hertz_mindlin``)."""
+    Mindlin's initial tangential stiffness with Coulomb coefficients ``mu`` (None: frictionless),
+    linear up to the cone or, with ``microslip``, Mindlin–Deresiewicz's curve
+    (``microslip.MindlinDeresiewicz``). Material values may be one for all or one per pair
+    (``hertz.hertz_mindlin``)."""
     return hertz_mindlin(
         pairs.line,
         pairs.radius_a,
@@ -287,4 +289,5 @@ def hertz_laws(
         E_b=E_b,
         nu_b=nu_b,
         mu=mu,
+        microslip=microslip,
     )

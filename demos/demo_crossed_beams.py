@@ -57,10 +57,12 @@ from strand import (
     candidate_pairs,
     candidate_stencils,
     contact_terms,
+    hertz_laws,
     locate_nodes,
     polyline_mesh,
     slab_partitioner,
 )
+from strand.contact.microslip import loop_energy
 
 comm = MPI.COMM_WORLD
 
@@ -153,6 +155,81 @@ if comm.rank == 0:
 assert abs(on_all(contact.state.force) - P) < 1e-9 * P  # equilibrium: the pair carries P
 assert error < 5e-3
 
+# ## Without a kink: Mindlin–Deresiewicz microslip
+#
+# Real wires do not stick rigidly up to the cone. Under a Hertz contact of radius $a$, slip
+# starts at once over an annulus at the edge and spreads inwards as $Q$ grows (Mindlin &
+# Deresiewicz; Johnson, *Contact Mechanics*, §7.2): from rest at constant $P$,
+#
+# $$Q(\delta) = \mu P\Big[1 - \Big(1 - \frac{\delta}{\delta^*}\Big)^{3/2}\Big],
+# \qquad \delta^* = \frac{3\mu P}{2K_0},$$
+#
+# $K_0 = 8G^*a$ being Mindlin's initial stiffness: the curve meets $\mu P$ with zero slope, where
+# the elastic–slip law above has a kink. A reversal at $(\delta_r, Q_r)$ follows Masing's rule,
+# the curve doubled: $Q = Q_r - 2\mu P[1 - (1 - (\delta_r - \delta)/2\delta^*)^{3/2}]$. The
+# energy lost per cycle of amplitude $\pm Q^*$ is the loop's area (Johnson eq. 7.59),
+#
+# $$W = \frac{36}{5}\frac{(\mu P)^2}{K_0}\Big[1 - (1 - q)^{5/3} - \frac{5q}{6}\big(1 + (1 - q)^{2/3}\big)\Big],
+# \qquad q = Q^*/\mu P.$$
+#
+# `hertz_laws` builds the pair's laws from the wires alone: Hertz crossed cylinders for the
+# normal force and, with `microslip=True`, Mindlin–Deresiewicz's friction. We press and shear the
+# same beams again, in finer steps, and read the pair's own slip $\delta$ (the relative motion of
+# its two surface points, summed over the steps) beside its friction force.
+
+normal_hz, microslip = hertz_laws(pairs, E, nu, E, nu, mu, microslip=True)
+contact_md = contact_terms(pairs, normal_hz, microslip)
+w_md = fem.Function(V)
+press.factor = 0.0
+shear.value = 0.0
+problem_md = NonlinearProblem(
+    ReissnerBeam(w_md, section).residual(), w_md, bcs, terms=[contact_md, press]
+)
+LoadStepper(problem_md, 0.25, 1e-3).ramp(lambda f: setattr(press, "factor", f), 0.0, 1.0)
+P_md = on_all(contact_md.state.force)
+K0 = on_all(microslip.stiffness(contact_md.committed_force, normal_hz))
+mu_p = mu * P_md
+md_loop = [(0.0, 0.0)]  # (δ, Q): the pair's own slip along x and its friction force on b
+
+
+def record_md(step):
+    md_loop.append(
+        (-on_all(contact_md.history.slip[:, 0]), -on_all(contact_md.state.traction[:, 0]))
+    )
+
+
+stepper = LoadStepper(problem_md, 0.2e-6, 1e-9, max_step=0.2e-6, on_step=record_md)
+for start, end in [(0.0, 6e-6), (6e-6, -6e-6), (-6e-6, 6e-6)]:
+    stepper.ramp(lambda v: setattr(shear, "value", v), start, end)
+d_md, Q_md = np.array(md_loop).T
+
+# Against the closed form: the virgin curve on the first leg, then Masing's branches from each
+# reversal; the shear of ±6 µm loads the pair to about 0.72 μP, short of gross slip. The area
+# of the last loop, $\oint Q\,d\delta$, is the energy lost per cycle.
+
+
+def virgin(d):
+    r = np.minimum(np.abs(d) / (1.5 * mu_p / K0), 1.0)
+    return np.sign(d) * mu_p * (1 - (1 - r) ** 1.5)
+
+
+turns = [0, int(np.argmax(d_md)), int(np.argmin(d_md)), len(d_md) - 1]
+Q_md_exact = virgin(d_md[: turns[1] + 1]).tolist()
+for a, b in zip(turns[1:-1], turns[2:], strict=True):
+    d_r, Q_r = d_md[a], Q_md[a]
+    Q_md_exact += (Q_r + 2 * virgin((d_md[a + 1 : b + 1] - d_r) / 2)).tolist()
+md_error = np.max(np.abs(Q_md - np.array(Q_md_exact))) / mu_p
+cycle = slice(turns[1], None)
+W_md = np.sum(0.5 * (Q_md[cycle][1:] + Q_md[cycle][:-1]) * np.diff(d_md[cycle]))
+Q_star = 0.5 * (Q_md[turns[1]] - Q_md[turns[2]])  # the loop's amplitude
+W_exact = loop_energy(Q_star, mu_p, K0)
+if comm.rank == 0:
+    print(f"Hertz pair: P = {P_md:.6g} N, K0 = {K0:.4e} N/m, δ* = {1.5 * mu_p / K0 * 1e6:.3f} µm")
+    print(f"largest |Q − Q_MD| / μP = {md_error:.1e}; energy per cycle {W_md:.4e} J")
+    print(f"Q*/μP = {Q_star / mu_p:.4f}: W(Q*) = {W_exact:.4e} J ({W_md / W_exact - 1:+.2%})")
+assert md_error < 1e-9
+assert abs(W_md / W_exact - 1) < 0.01
+
 # ## Picture
 
 if comm.rank == 0:  # one process draws
@@ -169,3 +246,11 @@ if comm.rank == 0:  # one process draws
     ax.grid(alpha=0.3)
     fig.savefig(out / "friction_loop.png", dpi=120, bbox_inches="tight")
     print("picture:", out / "friction_loop.png")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(1e6 * d_md, np.array(Q_md_exact) / mu_p, "k-", lw=1, label="Mindlin–Deresiewicz")
+    ax.plot(1e6 * d_md[::2], Q_md[::2] / mu_p, "o", ms=3, label="strand (every other step)")
+    ax.set(xlabel="slip of the pair, δ (µm)", ylabel="friction force Q / μP", ylim=(-1.15, 1.15))
+    ax.legend()
+    ax.grid(alpha=0.3)
+    fig.savefig(out / "microslip_loop.png", dpi=120, bbox_inches="tight")
+    print("picture:", out / "microslip_loop.png")

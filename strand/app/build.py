@@ -128,7 +128,12 @@ def build_problem(
     the run resolved it (None: resolved here, for a caller that starts from the case)."""
     kind = kind_of(case) if kind is None else kind
     keep_freed_memory()  # each LU factorisation reuses the last one's workspace
-    geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
+    geometry = build_geometry(
+        case.cable,
+        case.mesh.length,
+        case.mesh.h_max,
+        facing=case.contact.facing_stations,
+    )
     if len(geometry.cells) > LARGE_MESH:
         print(
             size_announcement(len(geometry.cells), 6 * len(geometry.points)),

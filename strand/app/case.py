@@ -27,7 +27,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               #   (on the core too) | ring (a vault off the core)
     same_layer_stencil = "segment"  # a same-layer pair ties node a to its facing segment, or
                               #   to the neighbour's nearest node (node: a cheaper LU, results
-                              #   within 1-20x the mesh error: docs/benchmarks.md)
+                              #   within 1-20x the mesh error: docs/benchmarks.md), or (facing,
+                              #   small sliding) to the node meshed exactly where it faces it
     slip = "surface"          # friction's slip: surface points | centreline (the seed paper's)
 
     [load]

@@ -65,7 +65,26 @@ def mesh_table(geometry) -> str:
                 f"{i:>4}|{i + 1:<4}  {name:<8}  {m.sum():>5}  {closed}  {np.abs(gaps[m]).max():.1e}"
             )
     lines.append(f"{'all':<9}  {'':<8}  {len(p):>5}")
+    if g.facing is not None:
+        lines += _facing_table(g)
     return "\n".join(lines)
+
+
+def _facing_table(g) -> list[str]:
+    """The same-layer pairs on facing stations per layer: their count, the layer's facing offset
+    δ and how far from it the pairs' nodes lie."""
+    from ..cable.geometry import facing_offset
+
+    f = g.facing
+    layer = g.wire_layer[g.point_wire[f.a]]
+    dz = g.points[f.c, 2] - g.points[f.a, 2]
+    lines = ["", "layer  facing pairs  offset δ (µm)  max |Δz − δ| (m)"]
+    for i in np.unique(layer):
+        m = layer == i
+        delta = facing_offset(g.cable.layers[i])
+        error = np.abs(dz[m] - delta).max()
+        lines.append(f"{i:>5}  {m.sum():>12}  {delta * 1e6:>+13.2f}  {error:.1e}")
+    return lines
 
 
 def _mesh(args) -> int:
@@ -77,7 +96,12 @@ def _mesh(args) -> int:
     case = load_case(args.case, args.set)
     out = on_root(lambda: writable_folder(args.out))
     t0 = time.perf_counter()
-    geometry = build_geometry(case.cable, case.mesh.length, case.mesh.h_max)
+    geometry = build_geometry(
+        case.cable,
+        case.mesh.length,
+        case.mesh.h_max,
+        facing=case.contact.facing_stations,
+    )
     t_geo = time.perf_counter() - t0
     from ..cable.mesh import cable_mesh, write_centrelines
     from ..model.model import strand_stencils

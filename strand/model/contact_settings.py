@@ -74,8 +74,13 @@ class ContactSettings:
             c: two nodes a pair, as the crossings, so each LU of 1 m of Cardinal takes 2.9e10
             operations instead of 5.3e10 and the main job's window 0.7 of the time; its results
             differ from the default's by one to twenty times the mesh error,
-            ``benchmarks/stencils.py``). Large sliding re-finds facing points on the
-            centreline.
+            ``benchmarks/stencils.py``), or "facing" (small sliding only: facing stations,
+            every wire of a layer meshed so that each station a of wire j has a node c of wire
+            j + 1 exactly where it faces it, at z + δ of the layer, the closest points of the two
+            helices: two nodes a pair, no offset, the gap across c's director tangent; wire 0
+            carries the receivers of the last wire's stations too; 1 m of Cardinal has 28.7k
+            nodes instead of 21.6k; docs/theory.md §3.4). Large sliding re-finds facing points
+            on the centreline; "facing" is refused there.
         slip: the friction's slip measure between layers (``strand.contact.element``, in large
             sliding ``strand.contact.sliding_slip``): "surface" (the relative motion of the two
             surface points in contact: a wire rolls on its neighbour without slip) or
@@ -107,6 +112,12 @@ class ContactSettings:
         "gap_seed": "",
     }
 
+    @property
+    def facing_stations(self) -> bool:
+        """Whether the strand's wires carry facing stations (``cable.geometry.build_geometry``'s
+        ``facing``): with same-layer contact on the "facing" stencil."""
+        return self.same_layer_stencil == "facing" and self.same_layer != "off"
+
     def __post_init__(self):
         try:
             object.__setattr__(self, "normal", resolve_normal(self.normal, self.friction))
@@ -127,9 +138,16 @@ class ContactSettings:
                 f"{', '.join(SAME_LAYER)}"
             )
         if self.same_layer_stencil not in SAME_LAYER_STENCILS:
+            *others, last = SAME_LAYER_STENCILS
             raise CableError(
                 f"contact same_layer_stencil {self.same_layer_stencil!r} is unknown; choose "
-                f"{' or '.join(SAME_LAYER_STENCILS)}"
+                f"{', '.join(others)} or {last}"
+            )
+        if self.same_layer_stencil == "facing" and self.model == "large":
+            raise CableError(
+                'contact same_layer_stencil = "facing" is for small sliding: large sliding '
+                "re-finds each facing point on the neighbour's centreline at every iteration, "
+                'so its pairs cannot stay on fixed stations; use "segment" with model = "large"'
             )
         if self.first_layer not in FIRST_LAYER:
             raise CableError(

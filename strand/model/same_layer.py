@@ -15,7 +15,12 @@ at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) i
   segment nearest the facing point, the gap a's distance from the line of c's director tangent
   (``director``), and the slip of the facing point, ``offset`` s along that tangent, carried by
   c's section: two nodes, so the LU does not tie every node to its neighbours' segments
-  (docs/theory.md §3.4).
+  (docs/theory.md §3.4); or
+* ``"facing"`` (small sliding, on a geometry built with facing stations:
+  ``cable.geometry.build_geometry(facing=True)``): the node stencil [c, a] where the mesh puts c
+  exactly where station a faces wire j+1 (z + δ, ``cable.geometry.facing_offset``), so the
+  offset is 0, the normal a → c is perpendicular to both wires and |x_c − x_a| is D; its
+  tributary is the arc between the midpoints to its wire's neighbouring stations.
 
 Neither normal changes the gap under rigid rotations (a frozen normal closes it by d ω²/2). The
 normal law is the Hertz line law over the node's tributary length of wire (with a C¹ onset,
@@ -96,9 +101,12 @@ Int = npt.NDArray[np.int64]
 SAME_LAYER = ("off", "nominal", "packed", "random")
 #: choices of ``[contact] first_layer``: the first helical layer on the core, or vaulted over it
 FIRST_LAYER = ("on_core", "ring")
-#: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], or node a to the
-#: neighbour's nearest node c [c, a]
-SAME_LAYER_STENCILS = ("segment", "node")
+#: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], node a to the
+#: neighbour's nearest node c [c, a], or station a to the node c that faces it exactly [c, a]
+#: (small sliding, on a geometry with facing stations)
+SAME_LAYER_STENCILS = ("segment", "node", "facing")
+#: the stencils of two nodes [c, a], pairs of ``contact.element.ContactGroup``
+TWO_NODE_STENCILS = ("node", "facing")
 
 
 def helix_clearance(layer: Layer) -> float:
@@ -215,7 +223,7 @@ class SameLayerPairs:
     @property
     def stencils(self) -> Int:
         """Input nodes of each pair, anchor first: (P, 3) [a, b₀, b₁] or (P, 2) [c, a]."""
-        if self.stencil == "node":
+        if self.stencil in TWO_NODE_STENCILS:
             return np.column_stack([self.nearest, self.a])
         return np.column_stack([self.a, self.b0, self.b1])
 
@@ -238,45 +246,89 @@ def _wire_pairs(geometry: StrandGeometry, w: int, w_next: int):
     return pa[keep], pb[j][keep], pb[j + 1][keep], t[keep], facing[keep], tributary[keep]
 
 
+def _empty_pairs(stencil: str) -> SameLayerPairs:
+    empty, none = np.zeros(0), np.zeros(0, np.int64)
+    return SameLayerPairs(
+        none,
+        none,
+        none,
+        empty,
+        np.zeros((0, 3)),
+        empty,
+        empty,
+        np.zeros(0, np.int32),
+        none,
+        empty,
+        stencil,
+    )
+
+
+def _layer_spreads(geometry: StrandGeometry, gaps: str, seed: int) -> dict[int, Array]:
+    """The gaps k | k + 1 of every helical layer of two wires or more (``spread_gaps``, drawn
+    layer after layer from ``seed``)."""
+    g = geometry
+    rng = np.random.default_rng(seed)
+    spreads = {}
+    for i, layer in enumerate(g.cable.layers[1:], start=1):
+        n = int(np.count_nonzero(g.wire_layer == i))
+        if n < 2:
+            continue
+        spare = n * (helix_clearance(layer) - layer.wire.diameter)
+        spreads[i] = spread_gaps(spare, n, gaps, rng)
+    return spreads
+
+
+def _facing_pairs(geometry: StrandGeometry, spreads: dict[int, Array]) -> SameLayerPairs:
+    """The geometry's pairs on facing stations (``cable.geometry.FacingPairs``) as two-node
+    pairs [c, a]: the facing point is node c (weight 0 on the segment from c to the next node,
+    no offset), the normal a → c, the gap that of the wires' place in the layer."""
+    g = geometry
+    f = g.facing
+    if f is None:
+        raise ValueError(
+            'the same-layer stencil "facing" needs a geometry with facing stations: '
+            "build_geometry(..., facing=True)"
+        )
+    if not len(f):
+        return _empty_pairs("facing")
+    wire = g.point_wire[f.a]
+    layer = g.wire_layer[wire]
+    first = np.searchsorted(g.wire_layer, layer)  # the layer's first wire
+    gap = np.array([spreads[i][k] for i, k in zip(layer, wire - first, strict=True)])
+    if np.any(g.point_wire[f.c + 1] != g.point_wire[f.c]):
+        raise RuntimeError("internal error: a facing receiver is the last node of its wire")
+    facing = g.points[f.c] - g.points[f.a]
+    normal = facing / np.linalg.norm(facing, axis=1)[:, None]
+    zero = np.zeros(len(f))
+    return SameLayerPairs(
+        f.a, f.c, f.c + 1, zero, normal, gap, f.tributary, layer, f.c, zero, "facing"
+    )
+
+
 def same_layer_pairs(
     geometry: StrandGeometry, gaps: str = "nominal", stencil: str = "segment", *, seed: int = 0
 ) -> SameLayerPairs:
     """The pairs between neighbouring wires of every helical layer, with ``gaps`` "nominal",
-    "packed" or "random" (drawn from ``seed``, layer after layer) and the ``stencil`` "segment"
-    or "node" (module docstring)."""
+    "packed" or "random" (drawn from ``seed``, layer after layer) and the ``stencil`` "segment",
+    "node" or "facing" (module docstring; "facing" needs a geometry with facing stations)."""
     if gaps not in SAME_LAYER[1:]:
         raise ValueError(f"same-layer gaps {gaps!r}: choose one of {', '.join(SAME_LAYER[1:])}")
     if stencil not in SAME_LAYER_STENCILS:
-        raise ValueError(f"same-layer stencil {stencil!r}: choose segment or node")
+        raise ValueError(f"same-layer stencil {stencil!r}: choose {', '.join(SAME_LAYER_STENCILS)}")
     g = geometry
-    rng = np.random.default_rng(seed)
+    spreads = _layer_spreads(g, gaps, seed)
+    if stencil == "facing":
+        return _facing_pairs(g, spreads)
     parts = []
-    for i, layer in enumerate(g.cable.layers[1:], start=1):
+    for i, spread in spreads.items():
         wires = np.flatnonzero(g.wire_layer == i)
-        if len(wires) < 2:
-            continue
-        spare = len(wires) * (helix_clearance(layer) - layer.wire.diameter)
-        spread = spread_gaps(spare, len(wires), gaps, rng)
         for k, w in enumerate(wires):
             a, b0, b1, xi, facing, tributary = _wire_pairs(g, w, wires[(k + 1) % len(wires)])
             gap = np.full(len(a), spread[k])
             normal = facing / np.linalg.norm(facing, axis=1)[:, None]
             parts.append((a, b0, b1, xi, normal, gap, tributary, np.full(len(a), i, np.int32)))
     if not parts:
-        empty, none = np.zeros(0), np.zeros(0, np.int64)
-        return SameLayerPairs(
-            none,
-            none,
-            none,
-            empty,
-            np.zeros((0, 3)),
-            empty,
-            empty,
-            np.zeros(0, np.int32),
-            none,
-            empty,
-            stencil,
-        )
+        return _empty_pairs(stencil)
     a, b0, b1, xi, normal, gap, tributary, layer = (
         np.concatenate(c) for c in zip(*parts, strict=True)
     )
@@ -331,7 +383,7 @@ def same_layer_groups(
     if not len(rows):
         return []
     radius, law, friction = same_layer_laws(geometry, pairs, rows, settings)
-    if pairs.stencil == "node":
+    if pairs.stencil in TWO_NODE_STENCILS:
         c, a = pairs.nearest[rows], pairs.a[rows]
         tangents = geometry.tangents()
         return [

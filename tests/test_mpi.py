@@ -157,6 +157,31 @@ def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
 
 @needs_mpirun
 @pytest.mark.slow
+def test_facing_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
+    """The same on facing stations (``same_layer_stencil = "facing"``): the six shifted lattices
+    of stations, wire 0's receivers and the core's node at each of their z, the two-node
+    stencils [c, a] kept whole on the rank owning c; the same fixed load path and tolerance."""
+    facing = [
+        "--set",
+        'contact.same_layer="nominal"',
+        "--set",
+        'contact.same_layer_stencil="facing"',
+        "--set",
+        "steps.balance=0",
+        "--set",
+        "steps.tolerance=1e-7",
+        "--set",
+        "steps.max_iterations=20",
+        "--set",
+        "steps.growth=1.0",
+    ]
+    _run_and_compare(
+        seven_wire, ["seven.toml", *facing], ranks=(2,), tag="facing", counts=("cuts",)
+    )
+
+
+@needs_mpirun
+@pytest.mark.slow
 def test_reuse_lu_is_the_same_on_1_and_2_ranks(seven_wire):
     """GMRES on a kept LU (``[steps] iteration = "reuse_lu"``) on distributed matrices: its
     directions differ by the ranks' round-off, and so may the GMRES iteration counts that

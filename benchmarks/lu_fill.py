@@ -5,8 +5,9 @@ Run: .venv/bin/python benchmarks/lu_fill.py [length_m]   (default 1.0)
 For the strand of the default case (Cardinal, h_max 4 mm) the Jacobian's sparsity pattern (the
 beam forms' extended by the pair stencils, ``strand.solver.terms.create_extended_matrix``) with:
 no same-layer pairs; the same-layer pairs as built (node a against the segment b₀b₁ of the
-neighbour that faces it); and, as a variant not taken, node a against the neighbour's node
-nearest to the facing point. Each pattern is factorised with MUMPS's PORD, AMF and METIS
+neighbour that faces it); as a variant not taken, node a against the neighbour's node nearest to
+the facing point; and the mesh with facing stations and its two-node pairs
+(``same_layer_stencil = "facing"``: more nodes, its own pattern). Each pattern is factorised with MUMPS's PORD, AMF and METIS
 orderings on diagonally dominant values (``strand.solver.ordering``: the count is the pattern's
 alone). Prints the matrix's entries, MUMPS's operations per LU (RINFOG(3)) and factor entries
 (INFOG(29)), and, per same-layer pair, how far its facing point lies from the nearest node of the
@@ -56,13 +57,29 @@ def main(length: float = 1.0) -> None:
         "s",
     ]
     print(table([], columns))
+    facing_case = load_case(
+        None,
+        [
+            f"mesh.length={length}",
+            'contact.same_layer="packed"',
+            'contact.same_layer_stencil="facing"',
+        ],
+    )
+    facing_geometry = build_geometry(case.cable, length, case.mesh.h_max, facing=True)
+    facing = StrandProblem(facing_geometry, facing_case.contact, setup=SaddleTest)
+    facing_stencils = [t.stencils for t in facing.model.contact]
+    facing_stencils += [np.asarray(t.stencils) for t in facing.model.same_layer]
     variants = {
-        "off": crossings,
-        "node to segment (built)": crossings + segments,
-        "node to nearest node (not built)": crossings + nearest,
+        "off": (J, crossings),
+        "node to segment (built)": (J, crossings + segments),
+        "node to nearest node (not built)": (J, crossings + nearest),
+        f"facing stations ({6 * len(facing_geometry.points)} unknowns)": (
+            facing.solver._J,
+            facing_stencils,
+        ),
     }
-    for name, stencils in variants.items():
-        A = create_extended_matrix(J, stencils)
+    for name, (form, stencils) in variants.items():
+        A = create_extended_matrix(form, stencils)
         entries = A.getInfo()["nz_used"]
         for ordering in ("pord", "amf", "scotch", "metis", "qamd"):
             t0 = time.perf_counter()
@@ -105,6 +122,7 @@ def main(length: float = 1.0) -> None:
         )
     )
     problem.solver.destroy()
+    facing.solver.destroy()
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-"""Same-layer stencils against the mesh error: node to segment, node to nearest node, at h and h/2.
+"""Same-layer stencils against the mesh error: node to segment, nearest node, facing stations, at h
+and h/2.
 
 Run: .venv/bin/python benchmarks/stencils.py [--set key=value …]
 (default: Cardinal over 0.3 m, 40 kN, then the saddle to +4.3 kN; ``--set`` changes the case)
@@ -30,7 +31,7 @@ from strand.model.programme import run_programme
 
 CASE = ["mesh.length=0.3", "load.cycle=[1.0]"]
 #: ``[contact] same_layer_stencil``
-VARIANTS = ["segment", "node"]
+VARIANTS = ["segment", "node", "facing"]
 
 
 def state(problem) -> dict:

@@ -12,12 +12,8 @@ import pytest
 from strand.app.case import load_case
 from strand.app.cli import main
 from strand.cable.description import CableError, cardinal
-from strand.cable.geometry import (
-    FACING_TOL,
-    POINT,
-    build_geometry,
-    facing_offset,
-)
+from strand.cable.facing import FACING_TOL, facing_offset
+from strand.cable.geometry import POINT, build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.model import strand_stencils
 from strand.model.same_layer import helix_clearance, same_layer_pairs

@@ -73,7 +73,7 @@ def mesh_table(geometry) -> str:
 def _facing_table(g) -> list[str]:
     """The same-layer pairs on facing stations per layer: their count, the layer's facing offset
     δ and how far from it the pairs' nodes lie."""
-    from ..cable.geometry import facing_offset
+    from ..cable.facing import facing_offset
 
     f = g.facing
     layer = g.wire_layer[g.point_wire[f.a]]

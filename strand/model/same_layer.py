@@ -18,7 +18,7 @@ at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) i
   (docs/theory.md §3.4); or
 * ``"facing"`` (small sliding, on a geometry built with facing stations:
   ``cable.geometry.build_geometry(facing=True)``): the node stencil [c, a] where the mesh puts c
-  exactly where station a faces wire j+1 (z + δ, ``cable.geometry.facing_offset``), so the
+  exactly where station a faces wire j+1 (z + δ, ``cable.facing.facing_offset``), so the
   offset is 0, the normal a → c is perpendicular to both wires and |x_c − x_a| is D; its
   tributary is the arc between the midpoints to its wire's neighbouring stations.
 
@@ -279,7 +279,7 @@ def _layer_spreads(geometry: StrandGeometry, gaps: str, seed: int) -> dict[int, 
 
 
 def _facing_pairs(geometry: StrandGeometry, spreads: dict[int, Array]) -> SameLayerPairs:
-    """The geometry's pairs on facing stations (``cable.geometry.FacingPairs``) as two-node
+    """The geometry's pairs on facing stations (``cable.facing.FacingPairs``) as two-node
     pairs [c, a]: the facing point is node c (weight 0 on the segment from c to the next node,
     no offset), the normal a → c, the gap that of the wires' place in the layer."""
     g = geometry

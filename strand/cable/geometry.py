@@ -24,7 +24,7 @@ their pairs (``strand.cable.facing``; docs/theory.md §3.4). Units: m.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 import numpy.typing as npt
@@ -75,6 +75,7 @@ class StrandGeometry:
     wire_offsets: npt.NDArray[np.int64]  # (W + 1,) points of wire w: offsets[w]:offsets[w+1]
     pairs: ContactPairs
     wire_phase: npt.NDArray[np.float64] = field(repr=False, default=None)  # (W,) φ0 (rad)
+    _: KW_ONLY
     facing: FacingPairs | None = field(repr=False, default=None)  # facing stations' pairs
 
     @property
@@ -289,5 +290,5 @@ def build_geometry(
         offsets,
         pairs,
         phase,
-        facing_pairs,
+        facing=facing_pairs,
     )

@@ -14,7 +14,7 @@ wires touching the layer below (``strand.cable.description``), Coulomb friction 
 steel) at every interface and between the wires of each layer. Equal wires leave layer k (6k wires
 on the radius k d) a circumferential fill 3/(π cos α), whatever k: 0.984 at 14°, and at 17.3° they
 would overlap. The helices of layer 1 come 69 µm closer than touching (as in every 1+6 of equal
-wires, Cardinal's too; ``strand.model.same_layer`` takes them as touching); layers 2–6 leave 19–45
+wires, Cardinal's too; ``strand.model.layer_states`` takes them as touching); layers 2–6 leave 19–45
 µm between neighbours. Minimum breaking strength MBS = Σ wire areas × 1770 MPa (the wires' tensile
 strength).
 

@@ -15,8 +15,9 @@ from strand.cable.description import CableError, cardinal
 from strand.cable.facing import FACING_TOL, facing_offset
 from strand.cable.geometry import POINT, build_geometry
 from strand.model.contact_settings import ContactSettings
+from strand.model.layer_states import helix_clearance
 from strand.model.model import strand_stencils
-from strand.model.same_layer import helix_clearance, same_layer_pairs
+from strand.model.same_layer import same_layer_pairs
 from strand_cases import SEVEN_WIRE, one_line_error, seven_wire
 
 LENGTH, H_MAX = 0.3, 4e-3

@@ -1,4 +1,4 @@
-"""The states a layer's geometry allows (``strand.model.same_layer``): its spare circumference
+"""The states a layer's geometry allows (``strand.model.layer_states``): its spare circumference
 spread evenly, bunched or at random over its gaps, and a first layer whose helices overlap as a
 ring on the core or vaulted over it."""
 
@@ -14,13 +14,8 @@ from strand.app.errors import CaseError
 from strand.cable.description import CableError, cardinal
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
-from strand.model.same_layer import (
-    first_layer_lift,
-    helix_clearance,
-    ring_lift,
-    same_layer_pairs,
-    spread_gaps,
-)
+from strand.model.layer_states import first_layer_lift, helix_clearance, ring_lift, spread_gaps
+from strand.model.same_layer import same_layer_pairs
 from strand_cases import nineteen_wire
 
 

@@ -16,9 +16,10 @@ from strand.app.run import build_problem, run_case
 from strand.cable.description import CableError, cable_from_dict, cardinal
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
+from strand.model.layer_states import helix_clearance
 from strand.model.problem import StrandProblem
 from strand.model.programme import run_programme
-from strand.model.same_layer import helix_clearance, same_layer_pairs
+from strand.model.same_layer import same_layer_pairs
 from strand.setups.saddle import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
 

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from ..cable.description import Cable, CableError
 from ..fatigue.sn import SN_CURVES
-from ..model.same_layer import first_layer_lift
+from ..model.layer_states import first_layer_lift
 from ..solver.convergence import ITERATIONS
 from . import kinds
 from .errors import CaseError

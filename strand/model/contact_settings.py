@@ -14,7 +14,8 @@ from ..cable.description import CableError
 from ..contact.element import check_slip, resolve_normal
 from ..contact.errors import ContactError
 from .compliances import PENALTY_SETTINGS, compliance_named, compliances
-from .same_layer import FIRST_LAYER, SAME_LAYER, SAME_LAYER_STENCILS
+from .layer_states import FIRST_LAYER, SAME_LAYER
+from .same_layer import SAME_LAYER_STENCILS
 
 __all__ = ["ContactSettings"]
 
@@ -66,7 +67,7 @@ class ContactSettings:
         first_layer: where the first helical layer sits when its helices would overlap (a
             closed ring, as Cardinal's steel layer): "on_core" (default: on the core too, as on
             a king wire that just fits) or "ring" (a vault standing off the core, whose line
-            pairs start open by ``same_layer.ring_lift``).
+            pairs start open by ``layer_states.ring_lift``).
         same_layer_stencil: the nodes a same-layer pair ties in small sliding
             (``strand.model.same_layer``): "segment" (default: node a to the facing point of the
             neighbour's segment [b₀, b₁]) or "node" (node a to the neighbour's nearest node c,

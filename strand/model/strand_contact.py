@@ -27,8 +27,9 @@ from ..contact.sliding import SlidingGroup
 from ..contact.windows import NodeChains, SlidingWindows, chain_windows, sliding_group
 from .compliances import Wires, compliance_named
 from .contact_settings import ContactSettings
+from .layer_states import first_layer_lift
 from .partition import DistributionError, owned_rows
-from .same_layer import SameLayerPairs, first_layer_lift, same_layer_laws
+from .same_layer import SameLayerPairs, same_layer_laws
 
 __all__ = [
     "strand_pairs",
@@ -70,7 +71,7 @@ def strand_pairs(
 ) -> NodePairs:
     """The geometry's pairs ``sel`` (all of one kind) as ``NodePairs`` on the local dof blocks
     ``input_to_block`` (``mesh.input_to_block``): initial gaps zero, but ``core_gap`` (m) for
-    the core's line pairs (``same_layer.first_layer_lift``)."""
+    the core's line pairs (``layer_states.first_layer_lift``)."""
     pairs = geometry.pairs
     sel = np.asarray(sel)
     points = pair_stencils(geometry, sel)

@@ -25,7 +25,7 @@ LENGTH, H_MAX = 0.3, 4e-3
 
 @pytest.fixture(scope="module")
 def facing():
-    """0.3 m of Cardinal with facing stations: 3,000 to 4,000 nodes, four helical layers."""
+    """0.3 m of Cardinal with facing stations: 8,677 nodes, four helical layers."""
     return build_geometry(cardinal(), LENGTH, H_MAX, facing=True)
 
 

@@ -33,7 +33,7 @@ class FacingPairs:
 
     Station ``a`` of wire j (a layer's wires in order of phase) and the node ``c`` of wire j + 1
     (wire 0 after the last) at z + δ of the layer (``facing_offset``): the two centres are the
-    closest points of the two helices, |x_c − x_a| their clearance D.
+    closest points of the two helices, ‖x_c − x_a‖ their clearance D.
     """
 
     a: npt.NDArray[np.int64]
@@ -47,7 +47,7 @@ class FacingPairs:
 def facing_offset(layer) -> float:
     """δ (m, along z): wire j + 1 of ``layer`` faces wire j at z from z + δ, at every z.
 
-    With β = 2π/n and ω the layer's angular rate, |x_{j+1}(z + Δz) − x_j(z)|² =
+    With β = 2π/n and ω the layer's angular rate, ‖x_{j+1}(z + Δz) − x_j(z)‖² =
     2r²(1 − cos(β + ωΔz)) + Δz², whose minimum over Δz is at δ = −r²ω sin(β + ωδ) (Newton's
     method from its first-order root −r²ω sin β/(1 + r²ω² cos β), to round-off); 0 for straight
     wires and for a layer of one wire."""

@@ -19,10 +19,10 @@ where the branch started (0 on the virgin curve) and the branch factor c (1 virg
 reversal). Over a step:
 
 * the branch's traction τ₀ = t_old − t_r is mapped to its distance along the branch,
-  s₀ = X₀ [1 − (1 − |τ₀|/C₀)^{2/3}] with the capacity C₀ = cμP₀ and X₀ = 3C₀/(2K₀), at the normal
+  s₀ = X₀ [1 − (1 − ‖τ₀‖/C₀)^{2/3}] with the capacity C₀ = cμP₀ and X₀ = 3C₀/(2K₀), at the normal
   force P₀ of the step's start (with which K₀ is frozen, as in ``Mindlin``);
 * a slip Δg_T with Δg_T·τ₀ < 0 reverses the branch: anchor t_old, c = 2, s₀ = 0;
-* the branch goes on along S = s₀ τ₀/|τ₀| + Δg_T: τ = C h(|S|/X) S/|S|, h(r) = 1 − (1 − r)^{3/2}
+* the branch goes on along S = s₀ τ₀/‖τ₀‖ + Δg_T: τ = C h(‖S‖/X) S/‖S‖, h(r) = 1 − (1 − r)^{3/2}
   (1 past r = 1), with C = cμp and X = 3C/(2K₀) at the current normal force p;
 * t = t_r + τ, capped radially at μp (the cap binds only on a reversal branch whose direction or
   normal force has changed; the virgin branch saturates at μp by itself).
@@ -31,10 +31,11 @@ At constant P and along one direction this is Mindlin–Deresiewicz's curve and 
 exactly (``tests/test_microslip.py`` holds a crossed pair's loop and its energy per cycle to the
 closed forms). A branch that reaches the traction −t_r of its anchor, or the cap, goes on along
 the virgin curve (Masing's memory of one loop: symmetric cycles close on the curve they left);
-so does a pair that opens. In two directions, "reaches −t_r" reads: |t| ≥ |t_r| with
-(t − t_r)·t_r < 0 (a small loop left sideways is left behind too). For line contact (parallel or near-parallel wires) the same curve is
-used with the line law's K₀: Cattaneo–Mindlin's strip has a logarithmic compliance that depends
-on the contact's extent, so the point-contact shape stands for it (stated in docs/theory.md).
+so does a pair that opens. In two directions, "reaches −t_r" reads: ‖t‖ ≥ ‖t_r‖ with
+(t − t_r)·t_r < 0 (a small loop left sideways is left behind too). For line contact (parallel
+or near-parallel wires) the same curve is used with the line law's K₀: Cattaneo–Mindlin's strip
+has a logarithmic compliance that depends on the contact's extent, so the point-contact shape
+stands for it (stated in docs/theory.md).
 """
 
 from __future__ import annotations
@@ -46,6 +47,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .friction_laws import CoulombResult, Mindlin
+from .group import tangential_part
 
 __all__ = ["MindlinDeresiewicz", "microslip_return", "loop_energy"]
 
@@ -69,17 +71,12 @@ def _along(x: Array, capacity: Array, k0: Array) -> tuple[Array, Array, Array]:
 
 def _distance(tau: Array, capacity: Array, k0: Array) -> Array:
     """The distance s (m) along a branch at which its traction is ``tau`` (N): the inverse of
-    ``_along``, with |τ| capped at the capacity."""
+    ``_along``, with ‖τ‖ capped at the capacity."""
     live = (capacity > 0) & (k0 > 0)
     ratio = np.minimum(np.where(live, tau / np.where(live, capacity, 1.0), 0.0), 1.0)
     return np.where(live, 1.5 * capacity / np.where(live, k0, 1.0), 0.0) * (
         1.0 - (1.0 - ratio) ** (2.0 / 3.0)
     )
-
-
-def tangential_part(t: Array, n: Array) -> Array:
-    """t (P, 3) projected on the planes normal to n (P, 3)."""
-    return t - np.einsum("pi,pi->p", t, n)[:, None] * n
 
 
 #: a branch's traction below this fraction of μP₀ is round-off: nothing to reverse from
@@ -90,7 +87,7 @@ def reversal(
     slip: Array, t_old: Array, normal: Array, anchor: Array, cap: Array
 ) -> npt.NDArray[np.bool_]:
     """Whether each pair's slip Δg_T goes against its branch: Δg_T·τ₀ < 0, τ₀ = t_old − t_r on
-    the plane normal to ``normal``, where |τ₀| is more than round-off (``NEGLIGIBLE`` × the
+    the plane normal to ``normal``, where ‖τ₀‖ is more than round-off (``NEGLIGIBLE`` × the
     pair's Coulomb limit ``cap`` = μP₀, N)."""
     tau0 = tangential_part(t_old, normal) - tangential_part(anchor, normal)
     real = np.linalg.norm(tau0, axis=1) > NEGLIGIBLE * cap
@@ -131,9 +128,7 @@ def microslip_return(
     t0, t_r = (tangential_part(t, normal) for t in (t_old, anchor))
     tau0 = t0 - t_r
     size0 = np.linalg.norm(tau0, axis=1)
-    if decided is None:
-        decided = reversal(slip, t_old, normal, anchor, mu * p_start)
-    reverse = decided
+    reverse = reversal(slip, t_old, normal, anchor, mu * p_start) if decided is None else decided
     c = np.where(reverse, 2.0, branch)
     start = np.where(reverse[:, None], t0, t_r)
     s0 = np.where(reverse, 0.0, _distance(size0, c * mu * p_start, k0))
@@ -162,8 +157,9 @@ def microslip_return(
         d_pressure[k] = mu[k, None] * nu + np.einsum("pij,pj->pi", proj, d_pressure[k])
     span = 1.5 * c * mu * p_pos / np.where(k0 > 0, k0, 1.0)
     saturated = (k0 > 0) & (x >= span)
-    # the history if this evaluation is committed: the branch, or the virgin curve again
-    # a reversal branch past its anchor's level, away from it: the loop closed (1D: at −t_r)
+    # the history if this evaluation is committed: the branch, or the virgin curve again where
+    # the pair opened, reached the cap, or (a reversal branch) passed its anchor's level moving
+    # away from it: the loop closed (1D: at −t_r)
     passed = np.linalg.norm(traction, axis=1) >= np.linalg.norm(start, axis=1)
     away = np.einsum("pi,pi->p", traction - start, start) < 0
     rejoin = capped | (p <= 0) | ((c == 2) & passed & away)

@@ -16,7 +16,7 @@ at ξ on the segment [b₀, b₁]. Its pair (``[contact] same_layer_stencil``) i
 * ``"facing"`` (small sliding, on a geometry built with facing stations:
   ``cable.geometry.build_geometry(facing=True)``): the node stencil [c, a] where the mesh puts c
   exactly where station a faces wire j+1 (z + δ, ``cable.facing.facing_offset``), so the
-  offset is 0, the normal a → c is perpendicular to both wires and |x_c − x_a| is D; its
+  offset is 0, the normal a → c is perpendicular to both wires and ‖x_c − x_a‖ is D; its
   tributary is the arc between the midpoints to its wire's neighbouring stations.
 
 Neither normal changes the gap under rigid rotations (a frozen normal closes it by d ω²/2). The

@@ -127,6 +127,21 @@ def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seve
     _run_and_compare(seven_wire, ["seven.toml", *large], ranks=(2,), tag="large")
 
 
+#: converged to 1e-7 N on a fixed load path (no step growth)
+FIXED_PATH = [
+    "--set",
+    "steps.balance=0",
+    "--set",
+    "steps.tolerance=1e-7",
+    "--set",
+    "steps.max_iterations=20",
+    "--set",
+    "steps.growth=1.0",
+]
+#: the 1+6 with its same-layer pairs touching, on that path
+TOUCHING = ["--set", 'contact.same_layer="nominal"', *FIXED_PATH]
+
+
 @needs_mpirun
 @pytest.mark.slow
 def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
@@ -138,20 +153,8 @@ def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
     tolerance). So the runs converge to 1e-7 N on a fixed load path (no step growth); their
     last iterations then reach the round-off floor, so the iteration counts may differ by one
     and are not compared (measured: results within 2e-12)."""
-    same = [
-        "--set",
-        'contact.same_layer="nominal"',
-        "--set",
-        "steps.balance=0",
-        "--set",
-        "steps.tolerance=1e-7",
-        "--set",
-        "steps.max_iterations=20",
-        "--set",
-        "steps.growth=1.0",
-    ]
     _run_and_compare(
-        seven_wire, ["seven.toml", *same], ranks=(2,), tag="same_layer", counts=("cuts",)
+        seven_wire, ["seven.toml", *TOUCHING], ranks=(2,), tag="same_layer", counts=("cuts",)
     )
 
 
@@ -161,20 +164,7 @@ def test_facing_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
     """The same on facing stations (``same_layer_stencil = "facing"``): the six shifted lattices
     of stations, wire 0's receivers and the core's node at each of their z, the two-node
     stencils [c, a] kept whole on the rank owning c; the same fixed load path and tolerance."""
-    facing = [
-        "--set",
-        'contact.same_layer="nominal"',
-        "--set",
-        'contact.same_layer_stencil="facing"',
-        "--set",
-        "steps.balance=0",
-        "--set",
-        "steps.tolerance=1e-7",
-        "--set",
-        "steps.max_iterations=20",
-        "--set",
-        "steps.growth=1.0",
-    ]
+    facing = [*TOUCHING, "--set", 'contact.same_layer_stencil="facing"']
     _run_and_compare(
         seven_wire, ["seven.toml", *facing], ranks=(2,), tag="facing", counts=("cuts",)
     )
@@ -187,18 +177,7 @@ def test_reuse_lu_is_the_same_on_1_and_2_ranks(seven_wire):
     directions differ by the ranks' round-off, and so may the GMRES iteration counts that
     decide when the LU is renewed; on a fixed load path solved to 1e-7 N the results agree
     all the same (the iteration counts are not compared)."""
-    reuse = [
-        "--set",
-        'steps.iteration="reuse_lu"',
-        "--set",
-        "steps.balance=0",
-        "--set",
-        "steps.tolerance=1e-7",
-        "--set",
-        "steps.max_iterations=20",
-        "--set",
-        "steps.growth=1.0",
-    ]
+    reuse = ["--set", 'steps.iteration="reuse_lu"', *FIXED_PATH]
     _run_and_compare(
         seven_wire, ["seven.toml", *reuse], ranks=(2,), tag="reuse_lu", counts=("cuts",)
     )

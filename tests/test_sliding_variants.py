@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_mpi import _run_and_compare
+from test_mpi import TOUCHING, _run_and_compare
 from test_restart import QUIET, assert_continues, uninterrupted_with_checkpoint
 
 from strand.app.case import load_case
@@ -392,20 +392,7 @@ def test_large_sliding_same_layer_pairs_are_the_same_on_1_and_2_ranks(tmp_path):
     facing segment, then node a) kept whole on the rank that evaluates it; at a tight tolerance
     on a fixed load path the tables agree to 1e-8."""
     (tmp_path / "seven.toml").write_text(SEVEN_WIRE)
-    same = [
-        "--set",
-        'contact.model="large"',
-        "--set",
-        'contact.same_layer="nominal"',
-        "--set",
-        "steps.balance=0",
-        "--set",
-        "steps.tolerance=1e-7",
-        "--set",
-        "steps.max_iterations=20",
-        "--set",
-        "steps.growth=1.0",
-    ]
+    same = ["--set", 'contact.model="large"', *TOUCHING]
     _run_and_compare(
         tmp_path, ["seven.toml", *same], ranks=(2,), tag="large_same_layer", counts=("cuts",)
     )

@@ -69,6 +69,7 @@ VARIANTS = _with_halved(
         "default": Variant(None),
         "two-node same-layer pairs": Variant(None, ['contact.same_layer_stencil="node"']),
         "microslip": Variant(None, ['contact.compliance="hertz_microslip"']),
+        "facing stations": Variant(None, ['contact.same_layer_stencil="facing"']),
         "balance 1e-3": Variant(None, ["steps.balance=1e-3"]),
     }
 )
@@ -178,7 +179,7 @@ def run_variant(name: str, quick: bool) -> dict:
 def ends_of(name: str) -> list[dict]:
     """The results of ``name`` at the ends of its stages."""
     data = np.load(ROOT / f"{slug(name)}.npz")
-    count = 1 + max(int(k.rsplit("_", 1)[1]) for k in data.files)
+    count = 1 + max((int(k.rsplit("_", 1)[1]) for k in data.files), default=-1)  # none: failed
     return [
         {k.rsplit("_", 1)[0]: data[k] for k in data.files if k.endswith(f"_{i}")}
         for i in range(count)
@@ -188,9 +189,13 @@ def ends_of(name: str) -> list[dict]:
 def differences(name: str, reference: str) -> dict[str, float]:
     """The largest differences of ``name`` from ``reference`` at the ends of the stages both
     reached: deflection and end displacement (µm); element axial forces, pair forces and
-    same-layer pair forces, each against the reference's largest."""
+    same-layer pair forces, each against the reference's largest; nan where either reached
+    no stage's end."""
     out = {"deflection": 0.0, "end": 0.0, "N": 0.0, "pairs": 0.0, "same": 0.0}
-    for a, b in zip(ends_of(name), ends_of(reference), strict=False):
+    ours, theirs = ends_of(name), ends_of(reference)
+    if not ours or not theirs:
+        return dict.fromkeys(out, np.nan)
+    for a, b in zip(ours, theirs, strict=False):
         for key in ("deflection", "end"):
             out[key] = max(out[key], 1e6 * abs(float(a[key]) - float(b[key])))
         for key in ("N", "pairs", "same"):

@@ -80,8 +80,11 @@ class ContactSettings:
             j + 1 exactly where it faces it, at z + δ of the layer, the closest points of the two
             helices: two nodes a pair, no offset, the gap across c's director tangent; wire 0
             carries the receivers of the last wire's stations too; 1 m of Cardinal has 28.7k
-            nodes instead of 21.6k; docs/theory.md §3.4). Large sliding re-finds facing points
-            on the centreline; "facing" is refused there.
+            nodes instead of 21.6k and an LU 0.69 of the default's time; docs/theory.md §3.4).
+            "facing" is experimental: 1 m of Cardinal with packed layers does not tension
+            past 1 kN with it, and on the 1+6 it moves the core's contact force by 3.3 %
+            (design notes, 2026-11-29). Large sliding re-finds facing points on the
+            centreline; "facing" is refused there.
         slip: the friction's slip measure between layers (``strand.contact.element``, in large
             sliding ``strand.contact.sliding_slip``): "surface" (the relative motion of the two
             surface points in contact: a wire rolls on its neighbour without slip) or

@@ -174,15 +174,16 @@ class PairGroup:
     def friction(self) -> bool:
         return self.friction_law is not None and self.friction_law.active
 
-    def _choose(self, slip: Array, jacobian: bool) -> dict[str, Array]:
-        """The law's choices (``FrictionLaw.CHOICES``) to evaluate with, given the slip Δg_T:
-        made afresh until ``SETTLE`` tangents of the step have been evaluated, then those of
-        the last of them."""
+    def _choose(self, S: Array, dq: Array, jacobian: bool) -> dict[str, Array]:
+        """The law's choices (``FrictionLaw.CHOICES``) to evaluate with, given the slip
+        Δg_T = S Δq: made afresh until ``SETTLE`` tangents of the step have been evaluated,
+        then those of the last of them."""
         law = self.friction_law
         if not law.CHOICES:
             return {}
         if self._tangents >= self.SETTLE:
             return self._choices
+        slip = np.einsum("pij,pj->pi", S, dq)
         chosen = law.choose(slip, self._t_old, self._n_old, self._p_old, self._law_history)
         if jacobian:
             self._tangents += 1
@@ -207,7 +208,7 @@ class PairGroup:
         slipping = np.zeros(len(p), dtype=bool)
         if self.friction:
             S, dq = kin.slip()
-            choices = self._choose(np.einsum("pij,pj->pi", S, dq), jacobian)
+            choices = self._choose(S, dq, jacobian)
             ft = self.friction_law.terms(
                 S,
                 dq,

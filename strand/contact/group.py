@@ -122,8 +122,8 @@ class PairGroup:
     keeps those of the last one until the step is committed or rolled back, so that Newton meets
     no kink where a pair barely moves (as semismooth Newton methods freeze their active set).
     On 0.3 m of Cardinal (tension, first leg) 0.5 % of the pairs' steps end on a choice that
-    their converged slip contradicts; letting a later tangent change it, once a step, made the
-    window's Newton iterations 22 % more (design notes, 2026-11-29).
+    their converged slip contradicts; letting a later tangent change it, once a step, took 22 %
+    more Newton iterations there (design notes, 2026-11-29).
     """
 
     #: tangent evaluations of a step after which the law's choices are kept (2: those of the

@@ -153,6 +153,10 @@ class PairGroup:
         self._law_history = friction_law.initial_history(n_pairs) if friction_law else {}
         self._law_next: dict[str, Array] = {}  # ... as the last evaluation leaves it
         self._new_step()
+        #: per-pair tangential stabilisation springs (N/m; None: off, ``stabilise``) and the
+        #: energy they held at the last evaluation (J)
+        self._stabilisation: Array | None = None
+        self.stabilisation_energy = 0.0
         self.history = FrictionHistory.zeros(n_pairs)
         self.state = ContactState(
             np.zeros(n_pairs),
@@ -169,6 +173,19 @@ class PairGroup:
         """Forget the choices of the step that ended (``_choose``)."""
         self._tangents = 0  # tangent evaluations of this step
         self._choices: dict[str, Array] = {}
+
+    def stabilise(self, stiffness: Array | float | None) -> None:
+        """Hold every pair's slip since the step's start Δg_T with a spring of ``stiffness``
+        (N/m, per pair or one for all; None: off): residual Sᵀ k Δg_T, tangent k SᵀS. A
+        stabilisation of a step that would not converge (``strand.solver.stabilisation``),
+        not a law: nothing of it is committed."""
+        if stiffness is None:
+            self._stabilisation = None
+            return
+        k = np.broadcast_to(np.asarray(stiffness, float), (len(self),)).copy()
+        if np.any(k < 0):
+            raise ValueError("stabilise: the stiffness must be >= 0")
+        self._stabilisation = k
 
     @property
     def friction(self) -> bool:
@@ -206,8 +223,11 @@ class PairGroup:
             kin.add_hessian(K, -p)
         traction = np.zeros((len(p), 3))
         slipping = np.zeros(len(p), dtype=bool)
-        if self.friction:
+        if self.friction or self._stabilisation is not None:
             S, dq = kin.slip()
+        if self._stabilisation is not None:
+            self._add_stabilisation(S, dq, f, K)
+        if self.friction:
             choices = self._choose(S, dq, jacobian)
             ft = self.friction_law.terms(
                 S,
@@ -231,6 +251,16 @@ class PairGroup:
         self.state.fill(kin.gap, p, traction, kin.normal, slipping)
         self._last = W
         return f, K
+
+    def _add_stabilisation(self, S: Array, dq: Array, f: Array, K: Array | None) -> None:
+        """Add the springs of ``stabilise`` to the residual f and tangent K, in place."""
+        k = self._stabilisation
+        slip = np.einsum("pij,pj->pi", S, dq)
+        m = S.shape[2]
+        f[:, :m] += np.einsum("pij,pi->pj", S, k[:, None] * slip)
+        if K is not None:
+            K[:, :m, :m] += k[:, None, None] * (S.transpose(0, 2, 1) @ S)
+        self.stabilisation_energy = 0.5 * float(np.einsum("p,pi,pi->", k, slip, slip))
 
     def commit(self) -> None:
         """Accept the last evaluated state (the converged one) as the history."""

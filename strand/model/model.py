@@ -112,6 +112,7 @@ class StrandModel:
         self.w = fem.Function(self.V, name="w")
         self.section = layer_section(self.cmesh)
         self.beam = ReissnerBeam(self.w, self.section)
+        self._energy_form: fem.Form | None = None  # compiled at the first ``strain_energy``
         self.i2b = input_to_block(self.V)
         #: dof blocks this rank owns (0 … n_owned − 1; ghosts follow), and their input points
         self.n_owned = self.V.dofmap.index_map.size_local
@@ -133,6 +134,12 @@ class StrandModel:
                 f"{n_pairs} contact pairs evaluated over the ranks instead of "
                 f"{len(geometry.pairs)}: each must be evaluated on exactly one"
             )
+
+    def strain_energy(self) -> float:
+        """The beams' strain energy at the current unknowns, all ranks (J)."""
+        if self._energy_form is None:
+            self._energy_form = fem.form(self.beam.energy())
+        return self.comm.allreduce(fem.assemble_scalar(self._energy_form), op=MPI.SUM)
 
     def owned_rows(self, points: npt.ArrayLike, what: str = "terms") -> npt.NDArray[np.intp]:
         """Rows of ``points`` (P, k input node indices, anchor first) that this rank evaluates:

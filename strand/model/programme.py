@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..solver import ErrorControl, LoadStepper, RampState, StepRecord
+from ..solver import ErrorControl, LoadStepper, RampState, Stabiliser, StepRecord
 
 __all__ = ["Stage", "LoadProgramme", "Position", "run_programme", "cycle_stages"]
 
@@ -127,6 +127,7 @@ def run_programme(
     start: Position | None = None,
     controller: ErrorControl | None = None,
     retry: bool = False,
+    stabilisation: float | None = None,
 ) -> None:
     """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
     record, position)`` after every committed step. ``start``: continue from a position (the
@@ -137,6 +138,12 @@ def run_programme(
     state stays in the problem)."""
     setup = problem.setup
     first = start.stage if start is not None else 0
+    stabiliser = None
+    if stabilisation:
+        model = problem.model
+        stabiliser = Stabiliser(
+            [*model.contact, *model.same_layer], model.strain_energy, model.comm, stabilisation
+        )
     for index, stage in enumerate(programme.stages):
         if index < first:
             continue
@@ -151,6 +158,7 @@ def run_programme(
             controller=controller,
             retry=retry,
             settles=stage.settles,
+            stabiliser=stabiliser,
         )
         if on_step is not None:
             stepper.on_step = lambda rec, stage=stage, index=index, stepper=stepper: on_step(

@@ -18,7 +18,7 @@ it. It
 
 Modules: ``terms`` (the pair terms and their assembly), ``convergence`` (Newton's settings and
 tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and its records),
-``interrupt`` (Ctrl-C), ``ordering`` (the MUMPS ordering that fills least), ``memory`` (freed
+``stabilisation`` (contact springs for a step that would not converge), ``interrupt`` (Ctrl-C), ``ordering`` (the MUMPS ordering that fills least), ``memory`` (freed
 memory kept for the next factorisation).
 """
 
@@ -26,6 +26,7 @@ from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
 from .interrupt import Interrupt
 from .memory import keep_freed_memory
 from .problem import NonlinearProblem
+from .stabilisation import Stabiliser
 from .stepping import (
     ErrorControl,
     LoadStepFailure,
@@ -49,6 +50,7 @@ __all__ = [
     "RampState",
     "LoadStepFailure",
     "RunInterrupted",
+    "Stabiliser",
     "Interrupt",
     "keep_freed_memory",
 ]

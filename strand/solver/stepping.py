@@ -20,6 +20,7 @@ from mpi4py import MPI
 
 if TYPE_CHECKING:
     from .problem import NonlinearProblem
+    from .stabilisation import Stabiliser
 
 __all__ = [
     "LoadStepper",
@@ -64,6 +65,9 @@ class StepRecord:
     rejections: int = 0
     #: LU factorisations of the step, failed attempts included (``NewtonResult.factorisations``)
     factorisations: int = 0
+    #: the contact stabilisation's energy over the strain energy at the converged step
+    #: (``Stabiliser.fraction``); 0: the step converged without it
+    stabilisation: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -161,6 +165,10 @@ class LoadStepper:
         settles: the ramp's first step is no guide to the next (e.g. a strand's first
             tension step, in which its contact pairs close): no predictor, and no error
             estimate, is taken from it.
+        stabiliser: a ``Stabiliser``: after a failed attempt (and its ``retry``), the step is
+            tried again, and cut, with the contact springs on, until it converges; they are
+            switched off when it is committed, and their energy fraction recorded
+            (``StepRecord.stabilisation``). None (the default): no stabilisation.
     """
 
     def __init__(
@@ -177,6 +185,7 @@ class LoadStepper:
         controller: ErrorControl | None = None,
         retry: bool = False,
         settles: bool = False,
+        stabiliser: Stabiliser | None = None,
     ):
         if not (0 < min_step <= first_step):
             raise ValueError("LoadStepper: need 0 < min_step <= first_step")
@@ -191,6 +200,7 @@ class LoadStepper:
         self.controller = controller
         self.retry = retry
         self.settles = settles
+        self.stabiliser = stabiliser
         self.history: list[StepRecord] = []
         #: the ramp's state after its last converged step (``ramp(resume=...)`` continues it)
         self.state: RampState | None = None
@@ -243,6 +253,7 @@ class LoadStepper:
                     continue
                 settling = self.settles and resume is None and not records
                 previous = None if settling else (h, dw)
+                stabilisation = self._release()
                 self.solver.commit()
                 rec = StepRecord(
                     stage,
@@ -256,6 +267,7 @@ class LoadStepper:
                     retries,
                     rejections,
                     lus,
+                    stabilisation,
                 )
                 current = trial
                 if proposal is not None:
@@ -280,9 +292,13 @@ class LoadStepper:
                     predict = not self.extrapolate  # the same increment, predictor switched
                     continue
                 predict = self.extrapolate
+                if self.stabiliser is not None and not self.stabiliser.on:
+                    self.stabiliser.switch(True)  # the same increment, held
+                    continue
                 step /= 2
                 cuts += 1
                 if step < self.min_step:
+                    self._release()
                     raise LoadStepFailure(
                         f"{stage}: no convergence from {current:.6g} towards {trial:.6g} "
                         f"after {cuts} step cuts (increment now {step:.3g} < min_step "
@@ -292,6 +308,14 @@ class LoadStepper:
                     )
         self.step = step
         return records
+
+    def _release(self) -> float:
+        """Switch the stabiliser off; its energy fraction at the last evaluation (0: was off)."""
+        if self.stabiliser is None or not self.stabiliser.on:
+            return 0.0
+        fraction = self.stabiliser.fraction()
+        self.stabiliser.switch(False)
+        return fraction
 
     def _estimate(
         self, h: float, dw: Array, previous: tuple[float, Array] | None, cuts: int

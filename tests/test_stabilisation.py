@@ -1,0 +1,119 @@
+"""Contact stabilisation (``strand.solver.Stabiliser``): springs on every pair's slip since the
+step's start, switched on for the attempts of a step that follow a failed one.
+
+At the pair level: the residual is Sᵀ k Δg_T, the energy ½ k |Δg_T|², the tangent matches finite
+differences, and switching off gives back the unstabilised pair exactly. In the stepper: a step
+is retried with the springs on before it is cut, the springs are off again once it is committed,
+and their energy fraction is recorded; a step that converges without them never sees them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+from test_contact import crossed_pair
+from test_step_control import PathSolver, ramp
+
+from strand.solver import LoadStepFailure, Stabiliser
+from strand_cases import fd_tangent
+
+K_S = 2e4  # N/m
+
+
+def _moved_pair(compliance: str, line: bool):
+    """Four pairs committed closed, then moved: b slid 2 µm along x and pressed 1 µm."""
+    group = crossed_pair("director", line, np.radians(25), compliance=compliance)
+    P, k = group.stencils.shape
+    rng = np.random.default_rng(11)
+    w = np.zeros((P * k, 6))
+    w[:, 3:] = rng.normal(scale=0.05, size=(P * k, 3))
+    w[group.stencils[:, 1], 2] -= 2e-6
+    group.evaluate(w, True)
+    group.commit()
+    w2 = w.copy()
+    w2[group.stencils[:, 1], 0] += 2e-6
+    w2[group.stencils[:, 1], 2] -= 1e-6
+    w2[:, :3] += rng.normal(scale=1e-8, size=(P * k, 3))
+    return group, w2
+
+
+@pytest.mark.parametrize("line", [False, True])
+@pytest.mark.parametrize("compliance", ["penalty", "hertz"])
+def test_the_springs_add_their_force_energy_and_exact_tangent(compliance, line):
+    group, w = _moved_pair(compliance, line)
+    f0, K0 = group.evaluate(w, True)
+    group.stabilise(K_S)
+    f, K = group.evaluate(w, True)
+    S, dq = group.slip_operator(), w[group.stencils[:, :2]].reshape(len(group), 12)
+    dq = dq - group._q_old
+    slip = np.einsum("pij,pj->pi", S, dq)
+    assert np.abs(slip).max() > 1e-6  # the pairs moved
+    m = S.shape[2]
+    spring = np.einsum("pij,pi->pj", S, K_S * slip)
+    assert np.allclose(f[:, :m] - f0[:, :m], spring, rtol=1e-12, atol=1e-12 * np.abs(f).max())
+    assert np.array_equal(f[:, m:], f0[:, m:])
+    assert group.stabilisation_energy == pytest.approx(0.5 * K_S * np.sum(slip**2), rel=1e-12)
+    K_fd = fd_tangent(group, w)[:, :, group.dofs]
+    scale = max(np.abs(K).max(), 1.0)
+    assert np.abs(K - K_fd).max() <= 2e-6 * scale
+    assert np.abs(K - K0).max() >= 0.5 * K_S  # the springs are in it
+    group.stabilise(None)
+    f1, K1 = group.evaluate(w, True)
+    assert np.array_equal(f1, f0) and np.array_equal(K1, K0)
+
+
+def test_a_negative_spring_is_refused():
+    group, _ = _moved_pair("penalty", False)
+    with pytest.raises(ValueError, match="stiffness must be >= 0"):
+        group.stabilise(-1.0)
+    with pytest.raises(ValueError, match="must be > 0"):
+        Stabiliser([group], lambda: 1.0, MPI.COMM_SELF, stiffness=0.0)
+
+
+class Held:
+    """A stand-in contact group: records what the stabiliser sets, holds a fixed energy."""
+
+    def __init__(self):
+        self.stiffness = None
+        self.stabilisation_energy = 0.25
+
+    def stabilise(self, stiffness):
+        self.stiffness = stiffness
+
+
+class HeldSolver(PathSolver):
+    """``PathSolver`` whose attempts fail while ``held`` is off and ``fails`` says so."""
+
+    def __init__(self, held: Held, fails):
+        super().__init__(lambda lam: lam)
+        self.held = held
+        self.unheld_fails = fails
+        self.fails = lambda lam, predicted: self.held.stiffness is None and self.unheld_fails(lam)
+        self.states: list[float | None] = []
+
+    def solve(self):
+        self.states.append(self.held.stiffness)
+        return super().solve()
+
+
+def test_a_failed_step_is_held_before_it_is_cut_and_released_once_committed():
+    held = Held()
+    stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
+    solver = HeldSolver(held, fails=lambda lam: 0.3 < lam <= 0.5)  # a near-mechanism there
+    _, records = ramp(
+        solver, 0.0, 1.0, first_step=0.25, min_step=0.01, growth=1.0, stabiliser=stabiliser
+    )
+    loads = [r.load for r in records]
+    assert loads == pytest.approx([0.25, 0.5, 0.75, 1.0])  # no cut: held instead
+    assert solver.states == [None, None, K_S, None, None]
+    assert [r.stabilisation for r in records] == pytest.approx([0, 0.025, 0, 0])
+    assert held.stiffness is None and not stabiliser.on
+
+
+def test_without_a_stabiliser_the_same_ramp_fails():
+    """The loads where the stand-in has its near-mechanism cannot be stepped over by cuts."""
+    held = Held()
+    solver = HeldSolver(held, fails=lambda lam: 0.3 < lam <= 0.5)
+    with pytest.raises(LoadStepFailure, match="no convergence from 0.296875"):
+        ramp(solver, 0.0, 1.0, first_step=0.25, min_step=0.01, growth=1.0)

@@ -96,10 +96,12 @@ def newton_options(case: Case) -> NewtonOptions:
 
 def step_control(case: Case) -> dict:
     """``run_programme``'s step control from ``[steps]``: the error controller (``control =
-    "error"``, aiming at ``error_tolerance``) or None, and ``retry``."""
+    "error"``, aiming at ``error_tolerance``) or None, ``retry``, and the contact springs of
+    ``stabilise`` (N/m; None: off)."""
     s = case.steps
     controller = ErrorControl(tol=s.error_tolerance) if s.control == "error" else None
-    return {"controller": controller, "retry": s.retry}
+    stabilisation = s.stabilise if s.stabilise > 0 else None
+    return {"controller": controller, "retry": s.retry, "stabilisation": stabilisation}
 
 
 def setup_and_programme(case: Case, kind: SetupKind):

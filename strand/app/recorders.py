@@ -47,8 +47,8 @@ class StepTable(_CsvFile):
     """``steps.csv``: one row per converged step: number, stage, programme time (the time of
     the field series), the set-up's state, with a ``gauge`` (``reactions.ReactionGauge``) the
     strand's reactions at both ends (``EndReactions``, also kept in ``reactions`` by step
-    number), Newton's iterations, cuts and LU factorisations, wall time (s) and final residual
-    norm (N)."""
+    number), Newton's iterations, cuts and LU factorisations, the contact stabilisation's energy
+    fraction, wall time (s) and final residual norm (N)."""
 
     def __init__(self, folder: Path, state_type, gauge=None):
         from ..model.reactions import EndReactions
@@ -68,6 +68,7 @@ class StepTable(_CsvFile):
                 "cuts",
                 "failed_iterations",
                 "factorisations",
+                "stabilisation",
                 "seconds",
                 "residual_N",
             ],
@@ -90,6 +91,7 @@ class StepTable(_CsvFile):
                 s.cuts,
                 s.failed_iterations,
                 s.factorisations,
+                s.stabilisation,
                 s.seconds,
                 s.residual,
             ]

@@ -189,9 +189,12 @@ class Recording:
             setup.state(),
             rec.failed_iterations,
             rec.factorisations,
+            rec.stabilisation,
         )
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
+        if rec.stabilisation:
+            extra += f"  stabilised: {rec.stabilisation:.1e} of the strain energy"
         self.progress.step(stage, value, rec.iterations, rec.cuts, extra)
         if stage.parameter == "tension" and value == stage.target:
             self.tensioned(ctx)

@@ -28,7 +28,7 @@ class RunStep:
     """One converged step of a run: its number (from 1), stage, the parameter it ramps and that
     parameter's value, the programme time (``LoadProgramme.time``), Newton's effort (iterations,
     step cuts before it, wall time s, final residual norm N), the set-up's measures (``state``)
-    and the iterations of the failed attempts before it."""
+    the iterations of the failed attempts before it, its LUs, and its stabilisation."""
 
     number: int
     stage: str
@@ -42,6 +42,9 @@ class RunStep:
     state: Any
     failed_iterations: int = 0
     factorisations: int = 0
+    #: the contact stabilisation's energy over the strain energy (0: not stabilised;
+    #: ``strand.solver.Stabiliser``)
+    stabilisation: float = 0.0
 
 
 @dataclass(frozen=True)

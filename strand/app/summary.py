@@ -55,10 +55,17 @@ def effort_line(result: RunResult) -> str:
     lus = sum(s.factorisations for s in result.steps)
     outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
     per_iteration = result.seconds / max(its + failed, 1)
+    held = [s.stabilisation for s in result.steps if s.stabilisation]
+    stabilised = (
+        f", {len(held)} step{'s' * (len(held) > 1)} stabilised (contact springs' energy at "
+        f"most {max(held):.1e} of the strain energy)"
+        if held
+        else ""
+    )
     return (
         f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in {cuts} "
-        f"failed attempts), {lus} LUs, {result.seconds:.0f} s ({per_iteration:.2f} s per "
-        f"iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}"
+        f"failed attempts), {lus} LUs{stabilised}, {result.seconds:.0f} s ({per_iteration:.2f} s "
+        f"per iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}"
     )
 
 

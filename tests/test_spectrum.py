@@ -158,6 +158,30 @@ def test_the_spectrum_supplies_the_sweep():
         assert "\n" not in str(e.value)
 
 
+def test_a_spectrum_table_of_its_own_is_the_same_spectrum():
+    """[fatigue.spectrum] with classes = [[amplitude, cycles], ...] (a sub-table: it may stand
+    beside a case's [fatigue]) gives the case the list form gives; other keys are refused, and
+    its classes are checked as the list's."""
+    spectrum = [[1000.0, 2e6], [2000.0, 3e5]]
+    table = tomllib.loads(
+        "[fatigue]\nend_zone = 0.05\n[output]\nplots = false\n"
+        "[fatigue.spectrum]\nclasses = [[1000.0, 2e6], [2000.0, 3e5]]\n"
+    )
+    listed = {"fatigue": {"end_zone": 0.05, "spectrum": spectrum}, "output": {"plots": False}}
+    assert case_from_dict(table) == case_from_dict(listed)
+    for value, message in (
+        (
+            {"classes": spectrum, "period": 1.0},
+            r"expected the one key classes = .* got \['classes'",
+        ),
+        ({"cycles": spectrum}, r"\[fatigue.spectrum\]: expected the one key classes"),
+        ({"classes": [[1000.0, -2.0]]}, r"\[fatigue\] spectrum: -2.0 cycles at amplitude 1000.0"),
+    ):
+        with pytest.raises(CaseError, match=message) as e:
+            case_from_dict({"fatigue": {"spectrum": value}}, source="c.toml")
+        assert str(e.value).startswith("c.toml: [fatigue") and "\n" not in str(e.value)
+
+
 def test_a_spectrum_case_reads_back_from_its_case_toml(tmp_path):
     """The case.toml a run writes holds the spectrum and the sweep it supplies, and reads back
     to the same case (floats bitwise)."""

@@ -69,6 +69,11 @@ def seven(tmp_path) -> Path:
             ["{case}", "--set", "cable.layer[1].diameter=2.5"],
             r"layer\[1\]\.diameter = 2\.5 m is out of range \(0, 1\) m$",
         ),
+        (
+            ["{case}", "--set", "cable.core.E=210"],
+            r"cable: core\.E = 210 Pa: did you mean 210e9\? A wire's modulus is given in Pa",
+        ),
+        (["{case}", "--set", "cable.layer.1.E=180e3"], r"layer\[1\]\.E = 180000 Pa: did you"),
         (["{case}", "--out", "{case}"], "is a file, not a folder"),
         (["{case}", "--out", "{case}/sub"], "cannot create the results folder"),
     ],
@@ -81,6 +86,26 @@ def test_bad_input_gets_one_line_and_nothing_is_computed(tmp_path, seven, capsys
     assert line.startswith("strand: error: ")
     assert re.search(message, line), line
     assert sorted(tmp_path.rglob("*")) == before  # nothing computed, nothing written
+
+
+@pytest.mark.parametrize("command", ["run", "mesh", "compare"])
+def test_a_modulus_in_gpa_is_refused_in_one_line_and_nothing_is_written(
+    tmp_path, capsys, monkeypatch, command
+):
+    """E = 210 (meant as GPa) in a case's cable: refused as the case is read, naming E and the
+    value meant; no results folder (the default one, results/<case>, under the working folder)
+    nor any other file is written."""
+    monkeypatch.chdir(tmp_path)
+    path = tmp_path / "gpa.toml"
+    path.write_text(QUICK.replace("E = 210e9", "E = 210", 1))
+    before = contents(tmp_path)
+    assert main([command, str(path)]) == 2
+    line = one_line_error(capsys)
+    assert line == (
+        f"strand: error: {path}: cable: core.E = 210 Pa: did you mean 210e9? A wire's modulus "
+        "is given in Pa, and none is under 1 GPa"
+    )
+    assert contents(tmp_path) == before
 
 
 def test_run_help_lists_every_setting_of_every_section():

@@ -291,21 +291,23 @@ def main(argv: list[str] | None = None) -> int:
         description="Count the cycles of one column of a load history (a CSV in time, as a "
         "global analysis writes it) by rainflow (ASTM E1049), sort their amplitudes (range/2) "
         "into classes of equal width from 0, each run at its upper edge, and print the "
-        "[fatigue] spectrum = [[amplitude, cycles], ...] to paste into a case file.",
+        "[fatigue] spectrum as a table [fatigue.spectrum] with classes = [[amplitude, cycles], "
+        "...], to paste at the end of a case file (beside its [fatigue] table, if any).",
     )
     spectrum.add_argument("history", help="the history file: a header line of column names")
     spectrum.add_argument(
         "--column",
         required=True,
         help="the column to count, in the unit of the case's parameter (lateral N, curvature "
-        "1/m, tension_swing N)",
+        "1/m, tension_swing N); a force in kN or MN (tension_kN, or a units line) is read in N",
     )
     spectrum.add_argument("--bins", type=int, default=3, help="classes (default: %(default)s)")
     spectrum.add_argument("--time-column", default="", help="the time column: the duration")
     spectrum.add_argument(
         "--tension-column",
         default="",
-        help="a tension column (N): its mean, for [load] tension, and a line if it varies more",
+        help="a tension column (N; kN or MN read in N): its mean, for [load] tension, and a "
+        "line if it varies more",
     )
     spectrum.add_argument(
         "--period",

@@ -17,10 +17,12 @@ import numpy as np
 import pytest
 
 from strand import __version__
-from strand.app.case import CaseError, load_case
+from strand.app.case import CaseError, case_from_dict, load_case
+from strand.app.checks import tension_warning
 from strand.app.cli import main
 from strand_cases import SEVEN_WIRE, contents, earlier_run, one_line_error
 
+ROOT = Path(__file__).parents[1]
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
 
 
@@ -69,6 +71,11 @@ def seven(tmp_path) -> Path:
             ["{case}", "--set", "cable.layer[1].diameter=2.5"],
             r"layer\[1\]\.diameter = 2\.5 m is out of range \(0, 1\) m$",
         ),
+        (
+            ["{case}", "--set", "cable.core.E=210"],
+            r"cable: core\.E = 210 Pa: did you mean 210e9\? A wire's modulus is given in Pa",
+        ),
+        (["{case}", "--set", "cable.layer.1.E=180e3"], r"layer\[1\]\.E = 180000 Pa: did you"),
         (["{case}", "--out", "{case}"], "is a file, not a folder"),
         (["{case}", "--out", "{case}/sub"], "cannot create the results folder"),
     ],
@@ -81,6 +88,71 @@ def test_bad_input_gets_one_line_and_nothing_is_computed(tmp_path, seven, capsys
     assert line.startswith("strand: error: ")
     assert re.search(message, line), line
     assert sorted(tmp_path.rglob("*")) == before  # nothing computed, nothing written
+
+
+@pytest.mark.parametrize("command", ["run", "mesh", "compare"])
+def test_a_modulus_in_gpa_is_refused_in_one_line_and_nothing_is_written(
+    tmp_path, capsys, monkeypatch, command
+):
+    """E = 210 (meant as GPa) in a case's cable: refused as the case is read, naming E and the
+    value meant; no results folder (the default one, results/<case>, under the working folder)
+    nor any other file is written."""
+    monkeypatch.chdir(tmp_path)
+    path = tmp_path / "gpa.toml"
+    path.write_text(QUICK.replace("E = 210e9", "E = 210", 1))
+    before = contents(tmp_path)
+    assert main([command, str(path)]) == 2
+    line = one_line_error(capsys)
+    assert line == (
+        f"strand: error: {path}: cable: core.E = 210 Pa: did you mean 210e9? A wire's modulus "
+        "is given in Pa, and none is under 1 GPa"
+    )
+    assert contents(tmp_path) == before
+
+
+def test_a_tension_far_from_the_breaking_strength_is_warned_of_in_one_line():
+    """The mooring case (MBS 3.606 MN given) with its loads typed in kN (901.5, 180.3, 18):
+    0.025 % of the MBS; 4 MN: 111 %; its own 901.5 kN (25 %): no warning. Without an MBS,
+    the wires' aggregate yield force Σ A σ_y stands for it: a 1+6 of 3.34 mm wires at
+    1540 MPa, 7 π/4 (3.34 mm)² 1540 MPa = 94.45 kN, of which 500 N is 0.529 %; a cable without
+    yield stresses (Cardinal) has neither, and no warning."""
+    mooring = ROOT / "cases" / "mooring_judge120.toml"
+    in_kn = ["load.tension=901.5", "load.tension_swing=180.3", "load.fixed_lateral=18"]
+    assert tension_warning(load_case(mooring, in_kn)) == (
+        "[load] tension = 901.5 N is 0.025 % of the strand's breaking strength ([fatigue] "
+        "breaking_strength), 3.606e+06 N: is it in kN? Forces are in N"
+    )
+    high = tension_warning(load_case(mooring, ["load.tension=4e6"]))
+    assert high.startswith("[load] tension = 4e+06 N is 111 % of the strand's breaking strength")
+    assert high.endswith("the strand would break")
+    assert tension_warning(load_case(mooring)) == ""
+    yielding = QUICK.replace("nu = 0.3\n", "nu = 0.3\nyield_stress = 1540e6\n")
+    seven = tomllib.loads(yielding)
+    force = 7 * np.pi / 4 * 3.34e-3**2 * 1540e6
+    assert force == pytest.approx(94.45e3, rel=1e-4)
+    seven["load"]["tension"] = 500.0
+    assert tension_warning(case_from_dict(seven)) == (
+        "[load] tension = 500 N is 0.529 % of the strand's wires' aggregate yield force Σ A σ_y "
+        f"(no [fatigue] breaking_strength given), {force:.4g} N: is it in kN? Forces are in N"
+    )
+    seven["load"]["tension"] = 10e3
+    assert tension_warning(case_from_dict(seven)) == ""
+    assert tension_warning(load_case(None, ["load.tension=40.0"])) == ""  # Cardinal: no strength
+
+
+def test_a_run_warns_of_its_tension_once_and_its_summary_repeats_it(tmp_path, seven, capsys):
+    """10 kN on a 1+6 given an MBS of 2 MN (0.5 %): the run prints the warning once, before its
+    first step, runs to the end (exit 0), and summary.txt repeats it."""
+    out = tmp_path / "out"
+    args = ["run", str(seven), "--out", str(out), "--set", "load.cycle=[0.0]"]
+    assert main([*args, "--set", "fatigue.breaking_strength=2e6"]) == 0
+    printed = capsys.readouterr().out.splitlines()
+    warned = [n for n, line in enumerate(printed) if "strand: warning: [load] tension" in line]
+    assert len(warned) == 1 and "= 10000 N is 0.5 % of the strand's breaking" in printed[warned[0]]
+    first_step = next(n for n, line in enumerate(printed) if "Newton its" in line)
+    assert warned[0] < first_step
+    summary = (out / "summary.txt").read_text()
+    assert "warning: [load] tension = 10000 N is 0.5 % of the strand's breaking" in summary
 
 
 def test_run_help_lists_every_setting_of_every_section():

@@ -18,9 +18,10 @@ UNITS = ("_MPa", "_MPa_J_per_m2", "_um")
 
 def test_a_sweep_gives_the_fatigue_figures_per_amplitude(tmp_path):
     """A 1+6 (0.1 m, clamp zones of 20 mm) at lateral amplitudes 150 and 300 N: every fatigue
-    column is in sweep.csv and sweep.txt with its unit; the larger amplitude has the larger
-    stress range in every layer and zone, and the larger worst F₂ (of a line contact: a 1+6 has no
-    crossings) in the free span."""
+    column is in sweep.csv and sweep.txt with its unit, the saddle's measure too (the midspan
+    deflection, m); sweep.txt gives a line per column, its values side by side; the larger
+    amplitude has the larger stress range in every layer and zone, and the larger worst F₂ (of a
+    line contact: a 1+6 has no crossings) in the free span."""
     path = tmp_path / "seven.toml"
     path.write_text(SEVEN_WIRE)
     case = load_case(
@@ -39,8 +40,13 @@ def test_a_sweep_gives_the_fatigue_figures_per_amplitude(tmp_path):
     ]
     names += ["largest_damage_free", "largest_damage_clamp", "ps_ratio"]
     assert set(names) <= set(rows[0])
+    assert list(rows[0])[5:7] == ["peak_deflection_m", "unloaded_deflection_m"]
     text = (tmp_path / "sweep" / "sweep.txt").read_text()
-    assert all(name in text for name in names)
+    lines = text.splitlines()
+    for name, value in rows[1].items():  # a line per column: its name, then each amplitude's
+        line = next(x for x in lines if x.split()[:1] == [name])
+        assert line.split()[1:] == [rows[0][name], value], line
+    assert max(map(len, lines)) < 100, text
     small, large = ({k: float(v) for k, v in r.items() if k in names} for r in rows)
     for name in names[:4]:
         assert 0 < small[name] < large[name], name

@@ -118,6 +118,14 @@ def small_cable(**layer1):
     [
         ({"diameter": -1e-3}, r"layer\[1\]\.diameter = -0\.001 m is out of range \(0, 1\) m$"),
         ({"E": -2e11}, r"layer\[1\]\.E = -2e\+11 Pa is out of range \(0, inf\) Pa$"),
+        # a modulus in GPa or MPa read as Pa: refused, with the value it was likely meant as
+        ({"E": 210}, r"layer\[1\]\.E = 210 Pa: did you mean 210e9\? A wire's modulus is given in"),
+        ({"E": 180e3}, r"layer\[1\]\.E = 180000 Pa: did you mean 180000e6\? A wire's modulus"),
+        (
+            {"E": 0.5},
+            r"layer\[1\]\.E = 0\.5 Pa: A wire's modulus is given in Pa, and none is under",
+        ),
+        ({"E": 9.99e8}, r"layer\[1\]\.E = 9\.99e\+08 Pa: A wire's modulus .* under 1 GPa$"),
         ({"yield_stress": 0.0}, r"layer\[1\]\.yield_stress = 0 Pa is out of range \(0, inf\) Pa$"),
         ({"wires": 7}, r"layer\[1\]: its 7 wires .* overlap .*fill 1\.\d+"),
         ({"lay_angle": 60.0}, r"layer\[1\]\.lay_angle = 60° is out of range \(0°, 45°\)$"),
@@ -129,8 +137,13 @@ def small_cable(**layer1):
     ],
 )
 def test_bad_cable_input_is_named(change, message):
-    with pytest.raises(CableError, match=message):
+    with pytest.raises(CableError, match=message) as e:
         cable_from_dict(small_cable(**change))
+    assert "\n" not in str(e.value)
+
+
+def test_a_modulus_of_1_gpa_is_accepted():
+    assert cable_from_dict(small_cable(E=1e9)).layers[1].wire.E == 1e9
 
 
 def test_elements_closer_than_the_merge_tolerance_are_refused():

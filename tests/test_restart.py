@@ -168,7 +168,7 @@ def test_a_sweep_cycles_each_amplitude_from_one_tensioned_state_as_separate_runs
     with open(out / "sweep.csv") as f:
         rows = list(csv.DictReader(f))
     assert [float(r["amplitude_N"]) for r in rows] == [150.0, 300.0]
-    peaks = [float(r["peak_deflection"]) for r in rows]
+    peaks = [float(r["peak_deflection_m"]) for r in rows]
     _, alone = steps(tmp_path / "alone_300")
     assert peaks[1] == pytest.approx(alone[:, 4].max(), rel=1e-10) and peaks[0] < peaks[1]
     # a second sweep into the folder is refused unless --overwrite

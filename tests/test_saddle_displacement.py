@@ -189,7 +189,7 @@ def test_a_sweep_of_y_b_amplitudes(case_file):
     with open(out / "sweep.csv") as f:
         table = list(csv.DictReader(f))
     assert [float(r["amplitude_m"]) for r in table] == [0.1e-3, 0.2e-3]
-    assert 0 < float(table[0]["peak_lateral"]) < float(table[1]["peak_lateral"])
+    assert 0 < float(table[0]["peak_lateral_N"]) < float(table[1]["peak_lateral_N"])
     for amplitude in (0.1e-3, 0.2e-3):
         last = cycle(out / f"yb_{amplitude:g}")[-1]
         assert abs(float(last["measured_m"]) - amplitude / 2) <= CONTROL_TOLERANCE * 0.025e-3

@@ -180,7 +180,7 @@ def test_a_sweep_reports_the_kinds_measure(pull, seven, tmp_path):
     )
     table = rows(out / "sweep.csv")
     assert [r["amplitude_N"] for r in table] == ["1000", "2000"]
-    peaks = [float(r["peak_end_displacement"]) for r in table]
+    peaks = [float(r["peak_end_displacement_m"]) for r in table]
     assert 0 < peaks[0] < peaks[1] and (out / "pull_2000" / "steps.csv").exists()
 
 

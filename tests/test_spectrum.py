@@ -7,6 +7,7 @@ from __future__ import annotations
 import csv
 import io
 import re
+import shlex
 import tomllib
 from pathlib import Path
 from types import SimpleNamespace
@@ -16,7 +17,7 @@ import pytest
 
 from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
-from strand.app.fatigue.load_history import history_spectrum
+from strand.app.fatigue.load_history import history_spectrum, spectrum_block
 from strand.app.fatigue.spectrum import spectrum_report, write_spectrum
 from strand.app.history import read_history
 from strand.app.run import run_sweep
@@ -158,6 +159,30 @@ def test_the_spectrum_supplies_the_sweep():
         assert "\n" not in str(e.value)
 
 
+def test_a_spectrum_table_of_its_own_is_the_same_spectrum():
+    """[fatigue.spectrum] with classes = [[amplitude, cycles], ...] (a sub-table: it may stand
+    beside a case's [fatigue]) gives the case the list form gives; other keys are refused, and
+    its classes are checked as the list's."""
+    spectrum = [[1000.0, 2e6], [2000.0, 3e5]]
+    table = tomllib.loads(
+        "[fatigue]\nend_zone = 0.05\n[output]\nplots = false\n"
+        "[fatigue.spectrum]\nclasses = [[1000.0, 2e6], [2000.0, 3e5]]\n"
+    )
+    listed = {"fatigue": {"end_zone": 0.05, "spectrum": spectrum}, "output": {"plots": False}}
+    assert case_from_dict(table) == case_from_dict(listed)
+    for value, message in (
+        (
+            {"classes": spectrum, "period": 1.0},
+            r"expected the one key classes = .* got \['classes'",
+        ),
+        ({"cycles": spectrum}, r"\[fatigue.spectrum\]: expected the one key classes"),
+        ({"classes": [[1000.0, -2.0]]}, r"\[fatigue\] spectrum: -2.0 cycles at amplitude 1000.0"),
+    ):
+        with pytest.raises(CaseError, match=message) as e:
+            case_from_dict({"fatigue": {"spectrum": value}}, source="c.toml")
+        assert str(e.value).startswith("c.toml: [fatigue") and "\n" not in str(e.value)
+
+
 def test_a_spectrum_case_reads_back_from_its_case_toml(tmp_path):
     """The case.toml a run writes holds the spectrum and the sweep it supplies, and reads back
     to the same case (floats bitwise)."""
@@ -217,14 +242,123 @@ def test_strand_spectrum_prints_the_block_a_case_file_takes(tmp_path, capsys):
     assert "13.5 cycles in 13" in text and "28 turning points" in text
     assert "set [load] tension = 10000 in N" in text and "WARNING" not in text
     table = tomllib.loads(text)
-    assert table["fatigue"]["spectrum"] == [[1.66667, 0.5], [3.33334, 10], [5, 3]]
+    assert table["fatigue"]["spectrum"]["classes"] == [[1.66667, 0.5], [3.33334, 10], [5, 3]]
     from_history = case_from_dict(table)
     by_hand = case_from_dict(
         {"fatigue": {"spectrum": [[1.66667, 0.5], [3.33334, 10.0], [5.0, 3.0]]}}
     )
     assert from_history == by_hand
     assert main([*args[:4], "--scale", "2", "--bins", "1"]) == 0
-    assert tomllib.loads(capsys.readouterr().out)["fatigue"]["spectrum"] == [[5, 27]]
+    assert tomllib.loads(capsys.readouterr().out)["fatigue"]["spectrum"]["classes"] == [[5, 27]]
+
+
+def _block(tmp_path: Path, capsys, *args: str) -> str:
+    """What ``strand spectrum`` prints for the two-block history (``_history``) with ``args``."""
+    assert main(["spectrum", str(_history(tmp_path)), "--column", "lateral_N", *args]) == 0
+    return capsys.readouterr().out
+
+
+def _classes(text: str) -> list[list[float]]:
+    return tomllib.loads(text)["fatigue"]["spectrum"]["classes"]
+
+
+@pytest.mark.parametrize(
+    ("period", "seconds"),
+    [("1y", 365.25 * 86400), ("30d", 30 * 86400), ("3h", 10800), ("13", 13), ("2.5min", 150)],
+)
+def test_period_scales_the_counts_from_the_records_duration(tmp_path, capsys, period, seconds):
+    """The record lasts 13 s (its time column, time_s): --period P multiplies the hand counts
+    0.5, 10, 3 by P / 13 s; a year is 365.25 d; --period 13 leaves them as counted."""
+    text = _block(tmp_path, capsys, "--time-column", "time_s", "--period", period)
+    scale = seconds / 13
+    counts = [c for _, c in _classes(text)]
+    np.testing.assert_allclose(counts, [0.5 * scale, 10 * scale, 3 * scale], rtol=1e-9)
+    assert "13.5 cycles in 13 s" in text
+    if period != "13":
+        assert f"counts × {scale:.6g}: the record's 13 s scaled to the period {seconds:g} s" in text
+
+
+def test_period_reads_the_time_columns_unit(tmp_path):
+    """A time column in hours (its units line) lasts 3600 times as many seconds; one without a
+    unit is taken in s and the block says so."""
+    rows = "\n".join(f"{t},{x}" for t, x in zip([0, 0.5, 1, 1.5, 2], [0, 1, -1, 1, 0], strict=True))
+    hours = tmp_path / "hours.csv"
+    hours.write_text(f"time,x\n(h),(N)\n{rows}\n")
+    h = history_spectrum(hours, "x", 1, time_column="time", period=86400.0)
+    assert h.duration == 7200 and h.scale == pytest.approx(12, rel=1e-12)
+    assert h.spectrum.count.tolist() == [2.0] and "(the time column has no unit" not in (
+        spectrum_block(h)
+    )
+    bare = tmp_path / "bare.csv"
+    bare.write_text(f"t,x\n{rows}\n")
+    h = history_spectrum(bare, "x", 1, time_column="t", period=86400.0)
+    assert h.duration == 2 and h.scale == 43200
+    assert "in 2 s (the time column has no unit: taken in s)" in spectrum_block(h)
+
+
+def test_a_force_column_in_kn_is_read_in_newtons_and_says_so(tmp_path, capsys):
+    """The two-block history with its lateral load and tension in kN: the amplitudes and the
+    tension's mean are those of the same history in N, 1000 times the numbers in the file,
+    each conversion said in one line; a column in te is refused."""
+    t, load = two_blocks()
+    path = tmp_path / "kn.csv"
+    rows = [
+        f"{a!r},{b / 1e3!r},{10 + b / 10:.12g}"
+        for a, b in zip(t.tolist(), load.tolist(), strict=True)
+    ]
+    path.write_text("time_s,lateral_kN,tension_kN\n" + "\n".join(rows) + "\n")
+    assert (
+        main(["spectrum", str(path), "--column", "lateral_kN", "--tension-column", "tension_kN"])
+        == 0
+    )
+    text = capsys.readouterr().out
+    np.testing.assert_allclose(
+        np.array(_classes(text)), [[1.66667, 0.5], [3.33334, 10], [5, 3]], rtol=1e-6
+    )
+    assert "# column 'lateral_kN' is in kN: read × 1000, in N\n" in text
+    assert "# column 'tension_kN' is in kN: read × 1000, in N\n" in text
+    assert "set [load] tension = 10000 in N" in text
+    moordyn = tmp_path / "line.out"
+    moordyn.write_text("Time Ten\n(s) (te)\n0 100\n1 140\n2 60\n")
+    assert main(["spectrum", str(moordyn), "--column", "Ten"]) == 2
+    line = one_line_error(capsys)
+    assert "column 'Ten' is in te, outside SI: give it in N" in line
+
+
+def test_the_printed_block_pasted_into_a_case_with_a_fatigue_table_is_read(tmp_path, capsys):
+    """The block goes at the end of a case file that has its own [fatigue] table (the mooring
+    case, where it is the last table; a 1+6 case where [output] follows it): the case reads,
+    its [fatigue] settings kept and its spectrum the block's."""
+    text = _block(tmp_path, capsys, "--time-column", "time_s")
+    mooring = (ROOT / "cases" / "mooring_judge120.toml").read_text()
+    seven = SEVEN_WIRE.replace("[output]", "[fatigue]\nend_zone = 0.02\n\n[output]")
+    expected = ((1.66667, 0.5), (3.33334, 10.0), (5.0, 3.0))
+    for name, before in (("mooring", mooring), ("seven", seven)):
+        path = tmp_path / f"{name}.toml"
+        path.write_text(before + "\n" + text)
+        case = load_case(path.with_name(f"{name}.toml"))
+        assert case.fatigue.spectrum == expected and case.load.sweep == (1.66667, 3.33334, 5.0)
+    assert case.fatigue.end_zone == 0.02
+    assert load_case(tmp_path / "mooring.toml").fatigue.breaking_strength == 3.606e6
+
+
+def test_the_docs_example_prints_what_the_docs_show(tmp_path, capsys, monkeypatch):
+    """docs/fatigue.md's load history example, run as written (its Python writes the history,
+    its command counts it for a year): it prints the block the page shows, line for line, and
+    writes the same to its --output."""
+    page = (ROOT / "docs" / "fatigue.md").read_text()
+    script, command = re.search(
+        r'```bash\n\.venv/bin/python -c "\n(.*?)"\n\.venv/bin/strand (spectrum .*?)\n```',
+        page,
+        re.S,
+    ).groups()
+    shown = re.search(r"```toml\n(# rainflow .*?)```", page, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    exec(script, {})
+    args = shlex.split(command.replace("\\\n", " "))
+    assert "--period" in args and main(args) == 0
+    assert capsys.readouterr().out == shown
+    assert (tmp_path / "spectrum.toml").read_text() == shown
 
 
 def test_a_tension_that_varies_more_than_its_mean_is_flagged(tmp_path, capsys):
@@ -252,15 +386,40 @@ def test_a_tension_that_varies_more_than_its_mean_is_flagged(tmp_path, capsys):
         ("t,x\n0,1\n1,2\n1,0\n", ["--column", "x", "--time-column", "t"], r"does not increase"),
         ("t,x\n0,1\n1,2\n", ["--column", "x", "--bins", "0"], r"--bins 0: expected a positive"),
         ("t,x\n0,1\n1,2\n", ["--column", "x", "--scale", "-1"], r"scale -1.0: expected a posi"),
+        (
+            "t,x\n0,1\n1,2\n",
+            ["--column", "x", "--time-column", "t", "--period", "1y", "--scale", "2"],
+            r"--period and --scale: give one",
+        ),
+        ("t,x\n0,1\n1,2\n", ["--column", "x", "--period", "1y"], r"--period needs --time-column"),
+        (
+            "t,x\n0,1\n1,2\n",
+            ["--column", "x", "--time-column", "t", "--period", "1w"],
+            r"--period 1w: expected a positive number of seconds, or a number with s, min, h, d, y",
+        ),
+        (
+            "t,x\n0,1\n1,2\n",
+            ["--column", "x", "--time-column", "t", "--period", "0d"],
+            "--period 0d: expected a positive",
+        ),
+        (
+            "t,x\n(-),(N)\n0,1\n1,2\n",
+            ["--column", "x", "--time-column", "t"],
+            r"time column 't' is in '-': expected a time in s, min, h, d, y",
+        ),
+        ("t,x_lbf\n0,1\n1,2\n", ["--column", "x_lbf"], r"'x_lbf' is in lbf, outside SI"),
     ],
 )
 def test_bad_history_input_gets_one_line(tmp_path, capsys, content, args, message):
+    """One line, exit code 2, and nothing written: not even the --output file."""
     path = tmp_path / ("missing.csv" if content is None else "h.csv")
     if content is not None:
         path.write_text(content)
-    assert main(["spectrum", str(path), *args]) == 2
+    output = tmp_path / "spectrum.toml"
+    assert main(["spectrum", str(path), *args, "--output", str(output)]) == 2
     line = one_line_error(capsys)
     assert line.startswith("strand: error: ") and re.search(message, line), line
+    assert not output.exists()
 
 
 def test_a_history_in_moordyn_layout_is_read(tmp_path):

@@ -110,7 +110,9 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     spectrum = []             # [[amplitude, cycles], ...]: the cycles in a period (a year, the
                               #   design life) at each amplitude of lateral (N), curvature (1/m)
                               #   or tension_swing (N); runs the amplitudes as the sweep and
-                              #   writes Miner's sum per wire and pair: spectrum.csv, spectrum.txt
+                              #   writes Miner's sum per wire and pair: spectrum.csv, spectrum.txt;
+                              #   or a table [fatigue.spectrum] with classes = [[...], ...], as
+                              #   strand spectrum prints it (beside [fatigue], no second one)
 
 Unknown keys and bad values are errors naming the file and the key, raised before any computing:
 this module checks each value alone, ``strand.app.checks`` the settings against one another. The
@@ -198,6 +200,24 @@ def _numbers(where: str, key: str, value) -> tuple[float, ...]:
     return tuple(float(v) for v in value)
 
 
+def _spectrum(value) -> tuple[tuple[float, float], ...]:
+    """``[fatigue] spectrum``: the list ``[[amplitude, cycles], ...]``, or the table
+    ``[fatigue.spectrum]`` with that list as ``classes`` (``strand spectrum``'s block)."""
+    from ..fatigue.spectrum import spectrum_classes
+
+    if isinstance(value, dict):
+        if set(value) != {"classes"}:
+            raise CaseError(
+                f"[fatigue.spectrum]: expected the one key classes = [[amplitude, cycles], ...]; "
+                f"got {sorted(value)}"
+            )
+        value = value["classes"]
+    try:
+        return spectrum_classes(value)
+    except ValueError as e:
+        raise CaseError(f"[fatigue] spectrum: {e}") from None
+
+
 def _value(section: str, key: str, value, default, signed: bool = False):
     """``value`` of ``[section] key`` checked against the type of its ``default``."""
     unit = unit_of(section, key) if isinstance(value, int | float) else ""
@@ -219,12 +239,7 @@ def _value(section: str, key: str, value, default, signed: bool = False):
             )
         return number
     if (section, key) == ("fatigue", "spectrum"):
-        from ..fatigue.spectrum import spectrum_classes
-
-        try:
-            return spectrum_classes(value)
-        except ValueError as e:
-            raise CaseError(f"[fatigue] spectrum: {e}") from None
+        return _spectrum(value)
     if isinstance(default, tuple):
         return _numbers(where, key, value)
     if isinstance(default, str):

@@ -1,6 +1,7 @@
 """The checks of a whole case, across its sections: the load steps and the loads, the mesh against
 the span, the set-up kind's own checks, the fatigue curves and layers, and a ``[fatigue] spectrum``
-run as the ``[load] sweep``.
+run as the ``[load] sweep``; and the warning a run gives for a tension far from the strand's
+breaking strength (``tension_warning``).
 
 ``strand.app.case`` reads each setting and checks it alone (type, sign); ``checked_case`` then
 checks the settings against one another and against the cable, before any computing. It sits
@@ -24,7 +25,7 @@ from .settings import LINE_SEARCHES, STEP_CONTROLS, Case, FatigueSettings
 if TYPE_CHECKING:
     from .kinds import SetupKind
 
-__all__ = ["checked_case", "h_max_range"]
+__all__ = ["checked_case", "h_max_range", "tension_warning", "TENSION_SHARES"]
 
 #: elements no shorter than the thinnest wire's diameter over this: a beam (a wire's centre line
 #: and section) holds nothing shorter than its diameter, and finer elements only add unknowns
@@ -34,6 +35,11 @@ _FINEST = 10
 #: turn of a helix as a polygon of at least this many sides, whose chords stray from the helix
 #: by at most r (1 − cos(π/8)) = 7.6 % of its radius
 _TURN = 8
+
+
+#: a ``[load] tension`` outside these shares of the strand's breaking strength is warned of:
+#: under 1 %, likely a tension in kN read as N; over 100 %, the strand would break
+TENSION_SHARES = (0.01, 1.0)
 
 
 def h_max_range(cable: Cable) -> tuple[float, float]:
@@ -152,3 +158,37 @@ def _spectrum_sweep(case: Case) -> Case:
             f"{list(sweep)}; give the spectrum alone: it runs its amplitudes as the sweep"
         )
     return case if sweep else replace(case, load=case.load.with_values(sweep=amplitudes))
+
+
+def _strength(case: Case) -> tuple[float, str] | None:
+    """The breaking strength (N) the tension is held against, and what it is: ``[fatigue]
+    breaking_strength`` where given, else the wires' aggregate yield force Σ A σ_y where every
+    layer gives its yield stress (below the strand's break: the cable data has no tensile
+    strength); None without either."""
+    given = case.fatigue.breaking_strength
+    if given > 0:
+        return given, "breaking strength ([fatigue] breaking_strength)"
+    layers = case.cable.layers
+    if any(lay.wire.yield_stress is None for lay in layers):
+        return None
+    force = sum(lay.wires * lay.wire.area * lay.wire.yield_stress for lay in layers)
+    return force, "wires' aggregate yield force Σ A σ_y (no [fatigue] breaking_strength given)"
+
+
+def tension_warning(case: Case) -> str:
+    """One line where ``[load] tension`` lies outside ``TENSION_SHARES`` of the strand's
+    breaking strength (``_strength``), naming both; "" otherwise, or without a strength."""
+    strength = _strength(case)
+    if strength is None:
+        return ""
+    force, what = strength
+    tension = case.load.tension
+    share = tension / force
+    low, high = TENSION_SHARES
+    if low <= share <= high:
+        return ""
+    why = "is it in kN? Forces are in N" if share < low else "the strand would break"
+    return (
+        f"[load] tension = {tension:g} N is {100 * share:.3g} % of the strand's {what}, "
+        f"{force:.4g} N: {why}"
+    )

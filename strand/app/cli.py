@@ -22,7 +22,7 @@ strand mesh [case.toml]   build the strand mesh and contact pairs, print the tab
 strand compare case.toml | cardinal
                           run the case with small- and large-sliding contact; compare forces,
                           deflections and cost
-strand spectrum history.csv --column lateral_N [--bins 3]
+strand spectrum history.csv --column lateral_N [--bins 3] [--time-column time_s --period 1y]
                           count the cycles of a load history by rainflow and print the
                           [fatigue] spectrum to paste into a case file
 
@@ -177,12 +177,18 @@ def _compare(args, parser) -> int:
 
 
 def _spectrum(args) -> int:
-    from .fatigue.load_history import HistoryError, history_spectrum, spectrum_block
+    from .fatigue.load_history import HistoryError, history_spectrum, parse_period, spectrum_block
 
     if args.bins < 1:
         raise HistoryError(f"--bins {args.bins}: expected a positive whole number of classes")
     h = history_spectrum(
-        args.history, args.column, args.bins, args.time_column, args.tension_column, args.scale
+        args.history,
+        args.column,
+        args.bins,
+        args.time_column,
+        args.tension_column,
+        args.scale,
+        None if args.period is None else parse_period(args.period),
     )
     text = spectrum_block(h, args.history)
     if args.output:
@@ -285,27 +291,34 @@ def main(argv: list[str] | None = None) -> int:
         description="Count the cycles of one column of a load history (a CSV in time, as a "
         "global analysis writes it) by rainflow (ASTM E1049), sort their amplitudes (range/2) "
         "into classes of equal width from 0, each run at its upper edge, and print the "
-        "[fatigue] spectrum = [[amplitude, cycles], ...] to paste into a case file.",
+        "[fatigue] spectrum as a table [fatigue.spectrum] with classes = [[amplitude, cycles], "
+        "...], to paste at the end of a case file (beside its [fatigue] table, if any).",
     )
     spectrum.add_argument("history", help="the history file: a header line of column names")
     spectrum.add_argument(
         "--column",
         required=True,
         help="the column to count, in the unit of the case's parameter (lateral N, curvature "
-        "1/m, tension_swing N)",
+        "1/m, tension_swing N); a force in kN or MN (tension_kN, or a units line) is read in N",
     )
     spectrum.add_argument("--bins", type=int, default=3, help="classes (default: %(default)s)")
     spectrum.add_argument("--time-column", default="", help="the time column: the duration")
     spectrum.add_argument(
         "--tension-column",
         default="",
-        help="a tension column (N): its mean, for [load] tension, and a line if it varies more",
+        help="a tension column (N; kN or MN read in N): its mean, for [load] tension, and a "
+        "line if it varies more",
+    )
+    spectrum.add_argument(
+        "--period",
+        help="scale the counts from the record's duration (--time-column, in s unless its unit "
+        "says otherwise) to this period: seconds, or 3h, 30d, 1y (365.25 d)",
     )
     spectrum.add_argument(
         "--scale",
         type=float,
-        default=1.0,
-        help="multiply the counts: the times the history recurs in the spectrum's period",
+        help="multiply the counts: the times the history recurs in the spectrum's period "
+        "(instead of --period)",
     )
     spectrum.add_argument("--output", help="also write the lines to this file")
     for p in (run, mesh, compare):

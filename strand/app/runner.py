@@ -20,6 +20,7 @@ from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
+from .checks import tension_warning
 from .kinds import SetupKind, kind_of
 from .outputs import Run, registered_outputs
 from .recorders import BendingTable, KeyStates, SlipTable, StepTable
@@ -234,6 +235,15 @@ class Recording:
             r.close()
 
 
+def _warn_of_tension(case: Case, result: RunResult, stream) -> None:
+    """A tension far from the strand's breaking strength (``checks.tension_warning``), printed
+    and kept for the summary."""
+    warning = tension_warning(case)
+    if warning:
+        result.warnings.append(warning)
+        print(f"strand: warning: {warning}", file=stream, flush=True)
+
+
 def run_programme_with_outputs(
     case: Case,
     problem: StrandProblem,
@@ -254,6 +264,8 @@ def run_programme_with_outputs(
     t_start = time.perf_counter() if t_start is None else t_start
     kind = kind_of(case) if kind is None else kind
     result = RunResult(folder, cycle_parameter=programme.cycle_parameter)
+    if start is None:  # a run from the unloaded strand: warned once, before the first step
+        _warn_of_tension(case, result, stream)
     recording = Recording(
         case, kind, problem, programme, result, stream, keep=keep, fresh=start is None
     )

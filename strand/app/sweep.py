@@ -3,15 +3,16 @@ tensioned state, and the table that compares them (``sweep.csv``, ``sweep.txt``)
 set-up kind's measure (``SetupKind.measure``) at the peak and back at zero load, and, with the
 fatigue outputs, what answers the fatigue question per amplitude (``fatigue_columns``): the
 largest surface stress range per layer in the free span and the clamp zone, the worst crossing's
-(and line contact's) Ruiz F₂ and slip amplitude per zone, the largest Miner damage per zone and Poffenberger–Swart's
-ratio (NaN where skipped). A case with a ``[fatigue] spectrum`` runs its amplitudes as the sweep
-and gets Miner's sum over them (``strand.app.fatigue.spectrum``)."""
+(and line contact's) Ruiz F₂ and slip amplitude per zone, the largest Miner damage per zone and
+Poffenberger–Swart's ratio (NaN where skipped). Every column name carries its unit; ``sweep.txt``
+gives a line per column and a column per amplitude. A case with a ``[fatigue] spectrum`` runs its
+amplitudes as the sweep and gets Miner's sum over them (``strand.app.fatigue.spectrum``)."""
 
 from __future__ import annotations
 
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 import numpy as np
@@ -32,7 +33,7 @@ from .run_result import RunResult, Start
 from .runner import run_programme_with_outputs
 from .settings import Case
 
-__all__ = ["run_sweep", "SweepTable", "sweep_table", "fatigue_columns"]
+__all__ = ["run_sweep", "SweepTable", "sweep_table", "fatigue_columns", "unit_of"]
 
 
 def run_sweep(
@@ -85,7 +86,9 @@ def run_sweep(
                 break
     finally:
         problem.solver.destroy()
-    table = sweep_table(case, kind, problem.setup.units[parameter], results)
+    setup = problem.setup
+    measure_unit = unit_of(setup.state_type, kind.measure)
+    table = sweep_table(case, kind, setup.units[parameter], results, measure_unit=measure_unit)
     if is_root():
         (top / "sweep.csv").write_text(table.csv)
         (top / "sweep.txt").write_text(
@@ -137,12 +140,22 @@ class SweepTable:
     csv: str
 
 
-def sweep_table(case: Case, kind: SetupKind, unit: str, results: list[RunResult]) -> SweepTable:
+def unit_of(record_type, name: str) -> str:
+    """The unit of the field ``name`` of a set-up's record type, as column names write it
+    (``setups.base.quantity``: "m", "1_per_m"; "" for none)."""
+    return next(f.metadata.get("unit", "") for f in fields(record_type) if f.name == name)
+
+
+def sweep_table(
+    case: Case, kind: SetupKind, unit: str, results: list[RunResult], *, measure_unit: str
+) -> SweepTable:
     """One row per amplitude (of the ``kind``'s parameter, in ``unit`` as in column names): its
-    effort, what the set-up measured at the peak and back at zero load (the kind's ``measure``)
-    and, where the members have a fatigue report, its ``fatigue_columns``."""
+    effort, what the set-up measured at the peak and back at zero load (the kind's ``measure``,
+    in ``measure_unit``) and, where the members have a fatigue report, its ``fatigue_columns``.
+    Every column name carries its unit; the text gives a line per column, a column per
+    amplitude."""
     head = [f"amplitude_{unit}", "steps", "iterations", "cuts", "seconds"]
-    parameter, measure = kind.parameter, kind.measure
+    measure = f"{kind.measure}_{measure_unit}" if measure_unit else kind.measure
     head += [f"peak_{measure}", f"unloaded_{measure}", "outcome"]
     fatigue = [fatigue_columns(r.fatigue, len(case.cable.layers)) for r in results]
     names = next((list(f) for f in fatigue if f), [])
@@ -160,19 +173,30 @@ def sweep_table(case: Case, kind: SetupKind, unit: str, results: list[RunResult]
                 str(sum(s.iterations for s in cycle)),
                 str(sum(s.cuts for s in cycle)),
                 f"{r.seconds:.1f}",
-                f"{getattr(peak.state, measure):.12g}" if peak else "nan",
-                f"{getattr(zero[0].state, measure):.12g}" if zero else "nan",
+                f"{getattr(peak.state, kind.measure):.12g}" if peak else "nan",
+                f"{getattr(zero[0].state, kind.measure):.12g}" if zero else "nan",
                 "interrupted" if r.interrupted else "failed" if r.failure else "done",
                 *(f"{f.get(name, np.nan):.6g}" for name in names),
             ]
         )
-    text = [
-        f"sweep of {parameter} from one tensioned state ({case.load.tension / 1e3:g} kN):",
-        "  " + "  ".join(head),
-    ]
-    text += ["  " + "  ".join(row) for row in rows]
+    title = (
+        f"sweep of {kind.parameter} from one tensioned state ({case.load.tension / 1e3:g} kN), "
+        "a column per amplitude:"
+    )
     csv_text = "\n".join(",".join(r) for r in [head, *rows]) + "\n"
-    return SweepTable("\n".join(text) + "\n", csv_text)
+    return SweepTable("\n".join([title, *_transposed(head, rows)]) + "\n", csv_text)
+
+
+def _transposed(head: list[str], rows: list[list[str]]) -> list[str]:
+    """The table with a line per column (its name, then its value for each row, right-aligned),
+    so that it grows down with its columns, not across."""
+    name_width = max(map(len, head))
+    widths = [max(map(len, row)) for row in rows]
+    return [
+        f"  {name:<{name_width}}"
+        + "".join(f"  {row[i]:>{w}}" for row, w in zip(rows, widths, strict=True))
+        for i, name in enumerate(head)
+    ]
 
 
 def fatigue_columns(report, n_layers: int) -> dict[str, float]:

@@ -1,7 +1,7 @@
 """Cable descriptions: a core wire and layers of helical wires, as a cable engineer gives them.
 
 SI units: diameters in m, moduli and stresses in Pa, lay angles in degrees (measured from the strand
-axis). A wire may give its ``yield_stress`` (optional): a run then warns when a wire's axial stress
+axis); a modulus under 1 GPa (``MIN_MODULUS``: one given in GPa, E = 210) is refused. A wire may give its ``yield_stress`` (optional): a run then warns when a wire's axial stress
 exceeds it.
 A description comes from a TOML file (see ``strand/cable/data/cardinal.toml``) or a dict; every
 field is checked and errors name the field (``CableError``).
@@ -138,10 +138,27 @@ def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, c
     return float(v)
 
 
+#: the smallest modulus a wire may have (Pa): no metal's is under 1 GPa, and a modulus given in
+#: GPa or MPa, read as Pa, is (E = 210 for 210 GPa)
+MIN_MODULUS = 1e9
+
+
+def _modulus(d: dict, where: str) -> float:
+    """The wire's E (Pa), refused under ``MIN_MODULUS`` with the value it was likely meant as."""
+    E = _number(d, "E", where, 0.0)
+    if E >= MIN_MODULUS:
+        return E
+    meant = next((f"{E:g}{e}" for e, k in (("e9", 1e9), ("e6", 1e6)) if 1e9 <= E * k < 1e12), "")
+    hint = f"did you mean {meant}? " if meant else ""
+    raise CableError(
+        f"{where}.E = {E:g} Pa: {hint}A wire's modulus is given in Pa, and none is under 1 GPa"
+    )
+
+
 def _wire(d: dict, where: str) -> Wire:
     return Wire(
         diameter=_number(d, "diameter", where, 0.0, 1.0),
-        E=_number(d, "E", where, 0.0),
+        E=_modulus(d, where),
         nu=_number(d, "nu", where, -1.0, 0.5),
         yield_stress=_number(d, "yield_stress", where, 0.0) if "yield_stress" in d else None,
     )

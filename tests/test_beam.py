@@ -283,3 +283,28 @@ def test_a_residual_written_as_virtual_work_is_the_energys_derivative():
     energy = assemble_vector(fem.form(beam.residual(v))).array
     assert np.abs(energy).max() > 1.0  # a loaded state
     np.testing.assert_allclose(own, energy, rtol=0, atol=1e-10 * np.abs(energy).max())
+
+
+def test_layer_sections_take_the_cables_shear_coefficient_and_torsional_stiffness():
+    """A layer's ``shear_coefficient`` and ``torsional_stiffness`` (cable table) reach its cells'
+    section; the core, which gives neither, keeps Cowper's κ and G πd⁴/32. A cable that gives
+    neither leaves both out of the forms (None). ``layer`` is each cell's layer index."""
+    from strand.cable.description import cable_from_dict
+
+    core = {"diameter": 3e-3, "E": 2e11, "nu": 0.3, "friction": 0.3}
+    layer = {"wires": 6, "diameter": 3e-3, "E": 2e11, "nu": 0.3, "lay_angle": 8.0, "lay": "Z"}
+    layer |= {"friction": 0.5, "shear_coefficient": 0.5, "torsional_stiffness": 1.25}
+    cable = cable_from_dict({"core": core, "layer": [layer]})
+    section = layer_section(cable_mesh(build_geometry(cable, 0.02, 4e-3)))
+    is_core = section.layer.x.array == 0
+    assert 0 < is_core.sum() < len(is_core)
+    round_core = CircularSection(3e-3, 2e11, 0.3)
+    kappa, gj = section.shear_coefficient.x.array, section.torsional_stiffness.x.array
+    np.testing.assert_allclose(kappa[is_core], round_core.shear_coefficient, rtol=1e-15)
+    np.testing.assert_allclose(gj[is_core], round_core.GJ, rtol=1e-15)
+    np.testing.assert_array_equal(kappa[~is_core], 0.5)
+    np.testing.assert_array_equal(gj[~is_core], 1.25)
+    plain = layer_section(cable_mesh(build_geometry(cardinal(), 0.02, 4e-3)))
+    assert plain.torsional_stiffness is None and isinstance(
+        plain.shear_coefficient, ufl.core.expr.Expr
+    )

@@ -2,7 +2,8 @@
 
 SI units: diameters in m, moduli and stresses in Pa, lay angles in degrees (measured from the strand
 axis). A wire may give its ``yield_stress`` (optional): a run then warns when a wire's axial stress
-exceeds it.
+exceeds it; and its beam's ``shear_coefficient`` κ and ``torsional_stiffness`` GJ (N m²), optional
+too, which otherwise come from ν and the round section (``forms.CircularSection``).
 A description comes from a TOML file (see ``strand/cable/data/cardinal.toml``) or a dict; every
 field is checked and errors name the field (``CableError``).
 """
@@ -27,6 +28,7 @@ __all__ = [
     "judge120",
     "CORE_KEYS",
     "LAYER_KEYS",
+    "WIRE_OPTIONS",
 ]
 
 
@@ -42,6 +44,10 @@ class Wire:
     E: float  # Pa
     nu: float  # -
     yield_stress: float | None = None  # Pa; a run warns when a wire's axial stress exceeds it
+    shear_coefficient: float | None = (
+        None  # κ of κGA; default Cowper's 6(1+ν)/(7+6ν), 0.886 at ν 0.3
+    )
+    torsional_stiffness: float | None = None  # N m², a wire's GJ; default G πd⁴/32
 
     @property
     def area(self) -> float:
@@ -102,10 +108,12 @@ class Cable:
         return sum(lay.wires for lay in self.layers)
 
 
+#: optional fields of a wire (core or layer), None when not given
+WIRE_OPTIONS = ("yield_stress", "shear_coefficient", "torsional_stiffness")
 #: the fields of the core's table and of a layer's
-CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", "yield_stress"})
+CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", *WIRE_OPTIONS})
 LAYER_KEYS = frozenset(
-    {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
+    {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", *WIRE_OPTIONS}
 )
 
 
@@ -115,6 +123,8 @@ UNITS = {
     "E": "Pa",
     "nu": "",
     "yield_stress": "Pa",
+    "shear_coefficient": "",
+    "torsional_stiffness": "N m²",
     "lay_angle": "°",
     "friction": "",
 }
@@ -138,12 +148,24 @@ def _number(d: dict, key: str, where: str, low: float, high: float = math.inf, c
     return float(v)
 
 
+#: the open range of each optional field of a wire
+WIRE_OPTION_RANGES = {
+    "yield_stress": (0.0, math.inf),
+    "shear_coefficient": (0.0, 10.0),
+    "torsional_stiffness": (0.0, math.inf),
+}
+
+
 def _wire(d: dict, where: str) -> Wire:
+    options = {
+        key: _number(d, key, where, *WIRE_OPTION_RANGES[key]) if key in d else None
+        for key in WIRE_OPTIONS
+    }
     return Wire(
         diameter=_number(d, "diameter", where, 0.0, 1.0),
         E=_number(d, "E", where, 0.0),
         nu=_number(d, "nu", where, -1.0, 0.5),
-        yield_stress=_number(d, "yield_stress", where, 0.0) if "yield_stress" in d else None,
+        **options,
     )
 
 

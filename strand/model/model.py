@@ -41,14 +41,34 @@ PAIR_VECTORS = ("friction", "normal", "slip", "sliding")
 
 
 def layer_section(cmesh: CableMesh) -> CircularSection:
-    """Circular sections with the diameter and elastic constants of each cell's layer (DG0)."""
+    """Circular sections with the diameter and elastic constants of each cell's layer (DG0):
+    d (m), E (Pa), ν, and the cable's ``shear_coefficient`` κ and ``torsional_stiffness`` GJ
+    (N m²) where a layer gives them (a layer that does not takes the round section's; neither
+    is data of the forms when no layer gives it). Its ``layer`` (DG0) is each cell's layer
+    index, 0 the core, for a beam law on some layers only."""
     g = cmesh.geometry
     wires = [lay.wire for lay in g.cable.layers]
-    values = {
-        name: cell_function(cmesh.mesh, np.array([get(w) for w in wires])[g.cell_layer], name)
-        for name, get in (("d", lambda w: w.diameter), ("E", lambda w: w.E), ("nu", lambda w: w.nu))
-    }
-    return CircularSection(values["d"], values["E"], values["nu"])
+    own = [CircularSection(w.diameter, w.E, w.nu) for w in wires]  # the round sections'
+
+    def per_cell(values, name):
+        return cell_function(cmesh.mesh, np.array(values, dtype=float)[g.cell_layer], name)
+
+    def option(key, default):
+        given = [getattr(w, key) for w in wires]
+        if all(v is None for v in given):
+            return None
+        values = [default(s) if v is None else v for v, s in zip(given, own, strict=True)]
+        return per_cell(values, key)
+
+    section = CircularSection(
+        per_cell([w.diameter for w in wires], "d"),
+        per_cell([w.E for w in wires], "E"),
+        per_cell([w.nu for w in wires], "nu"),
+        shear_coefficient=option("shear_coefficient", lambda s: s.shear_coefficient),
+        torsional_stiffness=option("torsional_stiffness", lambda s: s.GJ),
+    )
+    section.layer = per_cell(np.arange(len(wires)), "layer")
+    return section
 
 
 def chosen_same_layer_pairs(

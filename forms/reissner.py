@@ -204,7 +204,9 @@ class ReissnerBeam:
       (``ufl.derivative`` of ``Gamma`` and ``K`` gives δΓ, δK), whose tangent is then not
       symmetric in general.
 
-    A linear section of one's own subclasses ``CircularSection`` instead.
+    A linear section of one's own subclasses ``CircularSection`` instead. A strand takes either
+    through ``strand``'s beam factory: ``StrandModel(geometry, beam=MyBeam)`` calls
+    ``MyBeam(w, section)`` with the strand's unknown and its layers' section.
 
     Args:
         w: the (6,)-valued P1 unknown (u, θ) on a 1D mesh in 3D.

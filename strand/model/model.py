@@ -8,6 +8,8 @@ order. Units: m, N, Pa, rad.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import dolfinx
 import numpy as np
 import numpy.typing as npt
@@ -32,9 +34,19 @@ from .strand_contact import (
     sliding_windows,
 )
 
-__all__ = ["StrandModel", "chosen_same_layer_pairs", "layer_section", "strand_stencils"]
+__all__ = [
+    "BeamFactory",
+    "StrandModel",
+    "chosen_same_layer_pairs",
+    "layer_section",
+    "strand_stencils",
+]
 
 Array = npt.NDArray[np.float64]
+
+#: builds a strand's beam from its unknown w (the (6,)-valued P1 function of every wire) and the
+#: layers' section (``layer_section``): ``ReissnerBeam`` or a law of one's own with its interface
+BeamFactory = Callable[[fem.Function, CircularSection], ReissnerBeam]
 
 #: the (P, 3) arrays of ``StrandModel.pair_results``
 PAIR_VECTORS = ("friction", "normal", "slip", "sliding")
@@ -112,6 +124,14 @@ class StrandModel:
     Args:
         geometry: the strand (``build_geometry``).
         contact: contact settings (normal, penalties, friction, small or large sliding).
+        comm: the ranks the mesh is distributed over.
+        beam: the beam law of every wire, called once as ``beam(w, section)`` with the unknown
+            ``w`` of the whole strand and the layers' section (``layer_section``: cell-wise d,
+            E, ν, κ, GJ and ``layer``); default ``ReissnerBeam``. A law of one's own subclasses
+            ``ReissnerBeam`` (``forms``' "what to override"); its ``residual()`` is the wires'
+            part of the problem, its ``N`` and ``M`` are what the field files and section cuts
+            read. The fatigue stresses (``strand.fatigue.stress``) stay Navier's, of a linear
+            elastic round wire.
     """
 
     def __init__(
@@ -119,6 +139,8 @@ class StrandModel:
         geometry: StrandGeometry,
         contact: ContactSettings | None = None,
         comm: MPI.Comm = MPI.COMM_WORLD,
+        *,
+        beam: BeamFactory = ReissnerBeam,
     ):
         self.geometry = geometry
         self.contact_settings = cs = contact or ContactSettings()
@@ -131,7 +153,7 @@ class StrandModel:
         self.V = beam_space(self.cmesh.mesh)
         self.w = fem.Function(self.V, name="w")
         self.section = layer_section(self.cmesh)
-        self.beam = ReissnerBeam(self.w, self.section)
+        self.beam = beam(self.w, self.section)
         self.i2b = input_to_block(self.V)
         #: dof blocks this rank owns (0 … n_owned − 1; ghosts follow), and their input points
         self.n_owned = self.V.dofmap.index_map.size_local

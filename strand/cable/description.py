@@ -44,10 +44,8 @@ class Wire:
     E: float  # Pa
     nu: float  # -
     yield_stress: float | None = None  # Pa; a run warns when a wire's axial stress exceeds it
-    shear_coefficient: float | None = (
-        None  # κ of κGA; default Cowper's 6(1+ν)/(7+6ν), 0.886 at ν 0.3
-    )
-    torsional_stiffness: float | None = None  # N m², a wire's GJ; default G πd⁴/32
+    shear_coefficient: float | None = None  # κ of κGA, in (0, 10); default 6(1+ν)/(7+6ν)
+    torsional_stiffness: float | None = None  # N m², a wire's GJ, > 0; default G πd⁴/32
 
     @property
     def area(self) -> float:

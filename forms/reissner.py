@@ -33,6 +33,7 @@ consistent and symmetric (for conservative loads).
 
 from __future__ import annotations
 
+import copy
 import math
 import numbers
 
@@ -111,6 +112,10 @@ class CircularSection:
     Given numbers, the stiffnesses below are numbers. ``ReissnerBeam`` puts them in its forms as
     cell-wise data (``on_mesh``), not as literals: a literal is part of the compiled kernel, so
     every new diameter or modulus would cost a new FFCx compilation.
+
+    A section law of one's own subclasses it and overrides ``force_stiffness`` and
+    ``moment_stiffness`` (a linear law), or the beam's ``N``, ``M`` and
+    ``strain_energy_density`` (a nonlinear one: ``ReissnerBeam``).
     """
 
     def __init__(self, d, E, nu, shear_coefficient=None, torsional_stiffness=None):
@@ -143,7 +148,11 @@ class CircularSection:
             return f
 
         names = ("d", "E", "nu", "shear_coefficient", "torsional_stiffness")
-        return CircularSection(*map(cell_wise, self._arguments, names))
+        # a copy keeps a subclass and its own attributes (its overridden stiffnesses); only the
+        # five arguments are replaced
+        section = copy.copy(self)
+        CircularSection.__init__(section, *map(cell_wise, self._arguments, names))
+        return section
 
     @property
     def EA(self):
@@ -167,15 +176,37 @@ class CircularSection:
         """Bending stiffness (N m²), the same about both axes."""
         return self.E * self.second_moment
 
-    def force_stiffness(self):
+    def force_stiffness(self) -> ufl.core.expr.Expr:
+        """3×3 matrix C_N of the section forces N = C_N Γ: diag(EA, κGA, κGA) in N, for the
+        axial and the two shear strains of the section frame [t, e2, e3]. Override it (with
+        ``moment_stiffness``) for another linear section, e.g. anisotropic or coupled terms;
+        ``ReissnerBeam.N`` and the energy ½ Γ·N use it."""
         return ufl.as_matrix([[self.EA, 0, 0], [0, self.GA, 0], [0, 0, self.GA]])
 
-    def moment_stiffness(self):
+    def moment_stiffness(self) -> ufl.core.expr.Expr:
+        """3×3 matrix C_M of the section moments M = C_M K: diag(GJ, EI, EI) in N m², for the
+        torsion and the two bending curvatures of the section frame. Override it for another
+        linear section (e.g. EI2 ≠ EI3); ``ReissnerBeam.M`` and the energy ½ K·M use it."""
         return ufl.as_matrix([[self.GJ, 0, 0], [0, self.EI, 0], [0, 0, self.EI]])
 
 
 class ReissnerBeam:
     """Strain measures, section forces, energy and residual of a Reissner beam.
+
+    What a law of one's own overrides (the strains ``Gamma`` and ``K`` stay):
+
+    * a hyperelastic law: ``strain_energy_density`` ψ(Γ, K); the residual and its tangent
+      follow by ``ufl.derivative``;
+    * the resultants ``N`` and ``M`` (and so ``section_forces``, ``spatial_force``,
+      ``spatial_moment``), which outputs, section cuts and pictures read: override them
+      with the energy, as ∂ψ/∂Γ and ∂ψ/∂K;
+    * a law without an energy: ``residual``, e.g. ∫ (N·δΓ + M·δK) dx written out
+      (``ufl.derivative`` of ``Gamma`` and ``K`` gives δΓ, δK), whose tangent is then not
+      symmetric in general.
+
+    A linear section of one's own subclasses ``CircularSection`` instead. A strand takes either
+    through ``strand``'s beam factory: ``StrandModel(geometry, beam=MyBeam)`` calls
+    ``MyBeam(w, section)`` with the strand's unknown and its layers' section.
 
     Args:
         w: the (6,)-valued P1 unknown (u, θ) on a 1D mesh in 3D.
@@ -211,23 +242,26 @@ class ReissnerBeam:
 
     @property
     def Gamma(self):
-        """Material translational strains (axial, shear 2, shear 3)."""
+        """Material translational strains Γ (axial, shear 2, shear 3), dimensionless, in the
+        section frame [t, e2, e3]."""
         L0, Lam, t = self.frame, self.Lambda, self.t
         return L0.T * (Lam.T * (t + self.d_ds(self.u)) - t)
 
     @property
     def K(self):
-        """Material curvatures (torsion, bending 2, bending 3) in rad/m."""
+        """Material curvatures K (torsion, bending 2, bending 3) in rad/m, section frame."""
         return self.frame.T * self.phi / self.h
 
     @property
     def N(self):
-        """Material section forces (axial N, shears V2, V3) in N."""
+        """Material section forces (axial N, shears V2, V3) in N: ``force_stiffness`` Γ here.
+        A law of one's own overrides it (with ``strain_energy_density``) as ∂ψ/∂Γ."""
         return self.section.force_stiffness() * self.Gamma
 
     @property
     def M(self):
-        """Material section moments (torque, bending M2, M3) in N m."""
+        """Material section moments (torque, bending M2, M3) in N m: ``moment_stiffness`` K
+        here. A law of one's own overrides it (with ``strain_energy_density``) as ∂ψ/∂K."""
         return self.section.moment_stiffness() * self.K
 
     def section_forces(self):
@@ -243,15 +277,23 @@ class ReissnerBeam:
         """Section moment m = Λ Λ0 M in the global frame (N m)."""
         return self.Lambda * (self.frame * self.M)
 
-    def strain_energy_density(self):
+    def strain_energy_density(self) -> ufl.core.expr.Expr:
+        """Strain energy per unit length ψ (J/m = N) at the cell's Gauss point: here the linear
+        ½ (Γ·N + K·M). Override it for a hyperelastic law ψ(Γ, K) of one's own (a UFL
+        expression of ``self.Gamma`` and ``self.K``): ``energy`` and ``residual`` use it, so the
+        residual is δψ and the tangent its consistent, symmetric second derivative. Override
+        ``N`` and ``M`` as well (∂ψ/∂Γ, ∂ψ/∂K) so that outputs read the law's resultants."""
         return 0.5 * (ufl.dot(self.Gamma, self.N) + ufl.dot(self.K, self.M))
 
     def energy(self) -> ufl.Form:
-        """Strain energy (J)."""
+        """Strain energy (J): ∫ ψ dx with ``strain_energy_density`` ψ."""
         return self.strain_energy_density() * self.dx
 
     def residual(self, v=None) -> ufl.Form:
-        """Internal virtual work δΠ(w; v); add external work with a minus sign."""
+        """Internal virtual work δΠ(w; v) (J per unit of ``v``), the derivative of ``energy``;
+        add external work with a minus sign. Override it for a law without an energy: the
+        virtual work ∫ (N·δΓ + M·δK) dx of one's own resultants, with δΓ, δK from
+        ``ufl.derivative(self.Gamma, self.w, v)`` and likewise for ``self.K``."""
         if v is None:
             v = ufl.TestFunction(self.w.function_space)
         return ufl.derivative(self.energy(), self.w, v)

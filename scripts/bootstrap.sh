@@ -29,7 +29,10 @@ find_python() {
   return 1
 }
 
-hash_of() { sha256sum "$root/pyproject.toml" | cut -d' ' -f1; }
+# what the environment is made from: a change of either re-installs
+hash_of() {
+  cat "$root/pyproject.toml" "$root"/scripts/mpi_first/strand_mpi_first.{py,pth} | sha256sum | cut -d' ' -f1
+}
 
 if [ -x "$venv/bin/python" ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$(hash_of)" ]; then
   exit 0
@@ -58,6 +61,10 @@ echo "strand setup: installing strand-cables[fenics,dev] into .venv"
 pip_quiet() { "$venv/bin/python" -m pip install --quiet "$@" 2>&1 | grep -v "is ignored: it is neither" || true; }
 pip_quiet --upgrade pip
 pip_quiet -e "$root[fenics,dev]"
-"$venv/bin/python" -c "import strand, dolfinx" || { echo "strand setup: install failed" >&2; exit 1; }
+# `import dolfinx` before `import strand`: the wheel's MPI library loaded first (the module's
+# docstring says how)
+site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+cp "$root"/scripts/mpi_first/strand_mpi_first.py "$root"/scripts/mpi_first/strand_mpi_first.pth "$site/"
+"$venv/bin/python" -c "import dolfinx, strand" || { echo "strand setup: install failed" >&2; exit 1; }
 hash_of > "$stamp"
 echo "strand setup: done"

@@ -18,12 +18,38 @@ NonlinearProblem``: each name is loaded from its module on first use (``_API``),
 from __future__ import annotations
 
 import importlib
+import importlib.util
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 try:  # the PyPI wheel of dolfinx must load its MPI/PETSc libraries first
     import dolfinx_solver  # noqa: F401
 except ImportError:  # conda/apt dolfinx: nothing to do
     pass
+
+
+def _check_forms() -> None:
+    """Raise ``ImportError`` in one line when ``import forms`` would not load strand's beam
+    forms, the package ``forms`` beside ``strand``, but a user's own ``forms.py`` (the obvious
+    name for a file of UFL forms) earlier on ``sys.path``: every module of strand that imports
+    the beam forms would otherwise fail on a name missing from it."""
+    try:
+        spec = importlib.util.find_spec("forms")
+    except (ImportError, ValueError):  # a module without a spec: leave it to the import
+        return
+    if spec is None or spec.origin is None:  # none, or a bare folder: strand's comes first
+        return
+    ours = Path(__file__).resolve().parent.parent / "forms"
+    found = Path(spec.origin).resolve()
+    if found != ours / "__init__.py":
+        shadow = found.parent if found.name == "__init__.py" else found
+        raise ImportError(
+            f"{shadow} shadows strand's beam forms (the package 'forms', {ours}): rename it, "
+            f"e.g. to my_{shadow.name}, and import it under its new name"
+        )
+
+
+_check_forms()
 
 __version__ = "0.1.0"
 

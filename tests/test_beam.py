@@ -240,3 +240,71 @@ def test_beam_forms_refuse_what_they_are_not_written_for(case):
         message = r"need a \(6,\)-valued unknown"
     with pytest.raises(ValueError, match=message):
         ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
+
+
+class DoubledBending(CircularSection):
+    """A section of one's own: EI × 2 about both axes (``moment_stiffness`` overridden)."""
+
+    def moment_stiffness(self):
+        return ufl.as_matrix([[self.GJ, 0, 0], [0, 2 * self.EI, 0], [0, 0, 2 * self.EI]])
+
+
+def test_a_section_subclass_keeps_its_override_on_the_mesh():
+    """A ``CircularSection`` subclass given numbers is put on the mesh as data (``on_mesh``)
+    and stays itself: a tip moment M turns the tip by ML/(2EI), half the plain section's
+    ML/EI, exactly (one-point cells reproduce a uniform moment)."""
+    L, M = 0.5, 3.0
+    case = cantilever(8, L, section=DoubledBending(D, E, NU))
+    assert type(case.beam.section) is DoubledBending
+    case.moment.value = [0.0, 0.0, M]
+    assert case.solver.solve().converged
+    assert case.tip_theta[2] == pytest.approx(M * L / (2 * S["EI"]), rel=1e-8)
+
+
+def test_a_residual_written_as_virtual_work_is_the_energys_derivative():
+    """The recipe for a law without an energy (``ReissnerBeam.residual``'s docstring):
+    ∫ (N·δΓ + M·δK) dx, with δΓ and δK by ``ufl.derivative``, assembles to the energy's
+    residual at a finite-rotation state (the linear law, which has both)."""
+    from dolfinx.fem import assemble_vector
+
+    rng = np.random.default_rng(3)
+    x = helix_points(3.34e-3, np.radians(6.0), 0.05, 12)
+    mesh = polyline_mesh(MPI.COMM_WORLD, x, np.column_stack([np.arange(12), np.arange(1, 13)]))
+    w = fem.Function(beam_space(mesh))
+    beam = ReissnerBeam(w, CircularSection(3.34e-3, 180e9, 0.3))
+    wn = w.x.array.reshape(-1, 6)
+    wn[:, :3] = 1e-3 * rng.standard_normal((len(wn), 3))
+    wn[:, 3:] = 0.5 * rng.standard_normal((len(wn), 3))
+    v = ufl.TestFunction(w.function_space)
+    d_gamma = ufl.derivative(beam.Gamma, w, v)
+    d_k = ufl.derivative(beam.K, w, v)
+    virtual_work = (ufl.dot(beam.N, d_gamma) + ufl.dot(beam.M, d_k)) * beam.dx
+    own = assemble_vector(fem.form(virtual_work)).array
+    energy = assemble_vector(fem.form(beam.residual(v))).array
+    assert np.abs(energy).max() > 1.0  # a loaded state
+    np.testing.assert_allclose(own, energy, rtol=0, atol=1e-10 * np.abs(energy).max())
+
+
+def test_layer_sections_take_the_cables_shear_coefficient_and_torsional_stiffness():
+    """A layer's ``shear_coefficient`` and ``torsional_stiffness`` (cable table) reach its cells'
+    section; the core, which gives neither, keeps Cowper's κ and G πd⁴/32. A cable that gives
+    neither leaves both out of the forms (None). ``layer`` is each cell's layer index."""
+    from strand.cable.description import cable_from_dict
+
+    core = {"diameter": 3e-3, "E": 2e11, "nu": 0.3, "friction": 0.3}
+    layer = {"wires": 6, "diameter": 3e-3, "E": 2e11, "nu": 0.3, "lay_angle": 8.0, "lay": "Z"}
+    layer |= {"friction": 0.5, "shear_coefficient": 0.5, "torsional_stiffness": 1.25}
+    cable = cable_from_dict({"core": core, "layer": [layer]})
+    section = layer_section(cable_mesh(build_geometry(cable, 0.02, 4e-3)))
+    is_core = section.layer.x.array == 0
+    assert 0 < is_core.sum() < len(is_core)
+    round_core = CircularSection(3e-3, 2e11, 0.3)
+    kappa, gj = section.shear_coefficient.x.array, section.torsional_stiffness.x.array
+    np.testing.assert_allclose(kappa[is_core], round_core.shear_coefficient, rtol=1e-15)
+    np.testing.assert_allclose(gj[is_core], round_core.GJ, rtol=1e-15)
+    np.testing.assert_array_equal(kappa[~is_core], 0.5)
+    np.testing.assert_array_equal(gj[~is_core], 1.25)
+    plain = layer_section(cable_mesh(build_geometry(cardinal(), 0.02, 4e-3)))
+    assert plain.torsional_stiffness is None and isinstance(
+        plain.shear_coefficient, ufl.core.expr.Expr
+    )

@@ -36,6 +36,11 @@ def same_case(a, b) -> bool:
     [
         {},  # the default case: Cardinal, saddle
         tomllib.loads(YIELDING),
+        tomllib.loads(
+            QUICK.replace(
+                'lay = "S"\n', 'lay = "S"\nshear_coefficient = 0.7\ntorsional_stiffness = 1.5\n'
+            )
+        ),
         {
             "load": {"kind": "bending", "sweep": [0.1, 0.2]},
             "contact": {"friction": False},

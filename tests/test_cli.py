@@ -55,7 +55,8 @@ def seven(tmp_path) -> Path:
         ),
         (
             ["{case}", "--set", "cable.core.nuu=0.3"],
-            "the cable's core has no key 'nuu'; valid: E, diameter, friction, nu, yield_stress$",
+            "the cable's core has no key 'nuu'; valid: E, diameter, friction, nu, "
+            "shear_coefficient, torsional_stiffness, yield_stress$",
         ),
         (
             ["{case}", "--set", "cable.layer.1.colour=1"],

@@ -269,3 +269,19 @@ def test_the_repository_cites_its_own_theory_pages():
         and any(s in p.read_text() for s in ("physics.md", "physics notes"))
     ]
     assert cited == []
+
+
+def test_the_forms_page_documents_what_a_law_overrides(built):
+    """Every method a beam law of one's own overrides is on the forms page (autodoc drops a
+    method without a docstring), with the page's "what to override" list."""
+    page = (built / "api" / "forms.html").read_text()
+    assert "What to override" in page
+    for name in (
+        "ReissnerBeam.strain_energy_density",
+        "ReissnerBeam.residual",
+        "ReissnerBeam.N",
+        "ReissnerBeam.M",
+        "CircularSection.force_stiffness",
+        "CircularSection.moment_stiffness",
+    ):
+        assert f'id="forms.reissner.{name}"' in page, name

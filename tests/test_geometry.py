@@ -127,6 +127,14 @@ def small_cable(**layer1):
         ),
         ({"E": 9.99e8}, r"layer\[1\]\.E = 9\.99e\+08 Pa: A wire's modulus .* under 1 GPa$"),
         ({"yield_stress": 0.0}, r"layer\[1\]\.yield_stress = 0 Pa is out of range \(0, inf\) Pa$"),
+        (
+            {"shear_coefficient": 12.0},
+            r"layer\[1\]\.shear_coefficient = 12 is out of range \(0, 10\)$",
+        ),
+        (
+            {"torsional_stiffness": -1.0},
+            r"layer\[1\]\.torsional_stiffness = -1 N m² is out of range \(0, inf\) N m²$",
+        ),
         ({"wires": 7}, r"layer\[1\]: its 7 wires .* overlap .*fill 1\.\d+"),
         ({"lay_angle": 60.0}, r"layer\[1\]\.lay_angle = 60° is out of range \(0°, 45°\)$"),
         ({"lay": "X"}, r"layer\[1\]\.lay = 'X': expected 'S' \(left\) or 'Z' \(right\)"),

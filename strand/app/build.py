@@ -6,8 +6,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from forms import ReissnerBeam
+
 from ..cable.geometry import build_geometry
 from ..model.checkpoint import CheckpointError, restore
+from ..model.model import BeamFactory
 from ..model.parallel import on_root
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme
@@ -122,12 +125,17 @@ def size_announcement(n_elements: int, n_unknowns: int) -> str:
 
 
 def build_problem(
-    case: Case, stream=None, *, kind: SetupKind | None = None
+    case: Case,
+    stream=None,
+    *,
+    kind: SetupKind | None = None,
+    beam: BeamFactory = ReissnerBeam,
 ) -> tuple[StrandProblem, LoadProgramme]:
     """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
     one line about it on ``stream``, and before the finite-element mesh is built, a line on its
     size when it has more than ``LARGE_MESH`` elements. ``kind``: the case's set-up kind, as
-    the run resolved it (None: resolved here, for a caller that starts from the case)."""
+    the run resolved it (None: resolved here, for a caller that starts from the case).
+    ``beam``: the wires' beam law, ``beam(w, section)`` (``StrandModel``)."""
     kind = kind_of(case) if kind is None else kind
     keep_freed_memory()  # each LU factorisation reuses the last one's workspace
     geometry = build_geometry(
@@ -144,7 +152,7 @@ def build_problem(
         )
     options = newton_options(case)
     setup, programme = setup_and_programme(case, kind)
-    problem = StrandProblem(geometry, case.contact, options, setup=setup)
+    problem = StrandProblem(geometry, case.contact, options, setup=setup, beam=beam)
     size = problem.model.comm.size
     print(
         f"{case.cable.name}: L = {case.mesh.length:g} m, {len(geometry.wire_layer)} wires, "

@@ -11,7 +11,7 @@ import json
 import math
 from dataclasses import fields
 
-from ..cable.description import Cable
+from ..cable.description import WIRE_OPTIONS, Cable
 from .settings import SECTIONS, Case
 
 __all__ = ["case_toml", "cable_table", "strand_version"]
@@ -51,8 +51,9 @@ def cable_table(cable: Cable) -> dict:
     def wire(layer) -> dict:
         w = layer.wire
         out = {"diameter": w.diameter, "E": w.E, "nu": w.nu}
-        if w.yield_stress is not None:
-            out["yield_stress"] = w.yield_stress
+        for key in WIRE_OPTIONS:
+            if getattr(w, key) is not None:
+                out[key] = getattr(w, key)
         return out
 
     return {

@@ -28,7 +28,10 @@ import sys
 import time
 from pathlib import Path
 
+from forms import ReissnerBeam
+
 from ..model.checkpoint import read_checkpoint
+from ..model.model import BeamFactory
 from ..model.parallel import root_stream
 from .build import build_problem as build_problem
 from .build import check_folder, restart_from, results_folder
@@ -52,13 +55,16 @@ def run_case(
     restart: str | Path | None = None,
     *,
     kind: SetupKind | None = None,
+    beam: BeamFactory = ReissnerBeam,
 ) -> RunResult:
     """Run ``case``; outputs go to ``folder`` (default: the case's output folder), which must be
     new or empty, or hold an earlier run to be replaced with ``overwrite`` (``FolderError``
     otherwise, raised before any computing). ``restart``: a checkpoint (``checkpoint.h5`` of an
     earlier run of the same strand) to continue from, with this case's load programme; the new
     folder's first step is the checkpoint's state. ``kind``: the case's set-up kind (None:
-    ``kinds.kind_of(case)``), resolved once here and carried through the run."""
+    ``kinds.kind_of(case)``), resolved once here and carried through the run. ``beam``: the
+    wires' beam law, called as ``beam(w, section)`` (``StrandModel``; default
+    ``ReissnerBeam``), for a script that runs a case with a law of its own."""
     stream = root_stream(stream or sys.stdout)  # printed once in a distributed run
     t_start = time.perf_counter()
     checkpoint = None
@@ -67,7 +73,7 @@ def run_case(
     folder = folder or case.output.folder
     check_folder(case, folder, overwrite)  # refused before anything is built
     kind = kind_of(case) if kind is None else kind
-    problem, programme = build_problem(case, stream, kind=kind)
+    problem, programme = build_problem(case, stream, kind=kind, beam=beam)
     try:
         start = (
             None if checkpoint is None else restart_from(problem, programme, checkpoint, restart)

@@ -17,7 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
+from forms import ReissnerBeam
+
 from ..model.checkpoint import restore
+from ..model.model import BeamFactory
 from ..model.parallel import is_root, on_root, root_stream
 from ..model.programme import LoadProgramme, Position
 from .build import (
@@ -37,12 +40,18 @@ __all__ = ["run_sweep", "SweepTable", "sweep_table", "fatigue_columns", "unit_of
 
 
 def run_sweep(
-    case: Case, folder: str | Path | None = None, stream=None, overwrite: bool = False
+    case: Case,
+    folder: str | Path | None = None,
+    stream=None,
+    overwrite: bool = False,
+    *,
+    beam: BeamFactory = ReissnerBeam,
 ) -> list[RunResult]:
     """Run the cycle of ``case`` at every amplitude of ``[load] sweep`` from one tensioned state:
     the tension once, into ``folder``/tension, then each amplitude restored from that state
     into ``folder``/<parameter>_<amplitude>, each with all its outputs (its first row is the
-    tensioned state); ``sweep.csv`` and ``sweep.txt`` in ``folder`` compare them."""
+    tensioned state); ``sweep.csv`` and ``sweep.txt`` in ``folder`` compare them. ``beam``: the
+    wires' beam law, ``beam(w, section)`` (``StrandModel``)."""
     stream = root_stream(stream or sys.stdout)
     t0 = time.perf_counter()
     folder = Path(folder or case.output.folder)
@@ -54,7 +63,7 @@ def run_sweep(
     on_root(lambda: _check_sweep_folder(folder, overwrite))
     for key in keys:
         on_root(lambda key=key: check_results_folder(folder / key, overwrite))
-    problem, programme = build_problem(case, stream, kind=kind)
+    problem, programme = build_problem(case, stream, kind=kind, beam=beam)
     results = []
     try:
         top = on_root(lambda: _sweep_folder(folder, overwrite, case))  # once the strand is built

@@ -1,8 +1,10 @@
 """Cable descriptions: a core wire and layers of helical wires, as a cable engineer gives them.
 
 SI units: diameters in m, moduli and stresses in Pa, lay angles in degrees (measured from the strand
-axis); a modulus under 1 GPa (``MIN_MODULUS``: one given in GPa, E = 210) is refused. A wire may give its ``yield_stress`` (optional): a run then warns when a wire's axial stress
-exceeds it.
+axis); a modulus under 1 GPa (``MIN_MODULUS``: one given in GPa, E = 210) is refused. A wire may
+give its ``yield_stress`` (optional): a run then warns when a wire's axial stress exceeds it; and
+its beam's ``shear_coefficient`` κ and ``torsional_stiffness`` GJ (N m²), optional too, which
+otherwise come from ν and the round section (``forms.CircularSection``).
 A description comes from a TOML file (see ``strand/cable/data/cardinal.toml``) or a dict; every
 field is checked and errors name the field (``CableError``).
 """
@@ -27,6 +29,7 @@ __all__ = [
     "judge120",
     "CORE_KEYS",
     "LAYER_KEYS",
+    "WIRE_OPTIONS",
 ]
 
 
@@ -42,6 +45,8 @@ class Wire:
     E: float  # Pa
     nu: float  # -
     yield_stress: float | None = None  # Pa; a run warns when a wire's axial stress exceeds it
+    shear_coefficient: float | None = None  # κ of κGA, in (0, 10); default 6(1+ν)/(7+6ν)
+    torsional_stiffness: float | None = None  # N m², a wire's GJ, > 0; default G πd⁴/32
 
     @property
     def area(self) -> float:
@@ -102,10 +107,12 @@ class Cable:
         return sum(lay.wires for lay in self.layers)
 
 
+#: optional fields of a wire (core or layer), None when not given
+WIRE_OPTIONS = ("yield_stress", "shear_coefficient", "torsional_stiffness")
 #: the fields of the core's table and of a layer's
-CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", "yield_stress"})
+CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", *WIRE_OPTIONS})
 LAYER_KEYS = frozenset(
-    {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
+    {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", *WIRE_OPTIONS}
 )
 
 
@@ -115,6 +122,8 @@ UNITS = {
     "E": "Pa",
     "nu": "",
     "yield_stress": "Pa",
+    "shear_coefficient": "",
+    "torsional_stiffness": "N m²",
     "lay_angle": "°",
     "friction": "",
 }
@@ -155,12 +164,24 @@ def _modulus(d: dict, where: str) -> float:
     )
 
 
+#: the open range of each optional field of a wire
+WIRE_OPTION_RANGES = {
+    "yield_stress": (0.0, math.inf),
+    "shear_coefficient": (0.0, 10.0),
+    "torsional_stiffness": (0.0, math.inf),
+}
+
+
 def _wire(d: dict, where: str) -> Wire:
+    options = {
+        key: _number(d, key, where, *WIRE_OPTION_RANGES[key]) if key in d else None
+        for key in WIRE_OPTIONS
+    }
     return Wire(
         diameter=_number(d, "diameter", where, 0.0, 1.0),
         E=_modulus(d, where),
         nu=_number(d, "nu", where, -1.0, 0.5),
-        yield_stress=_number(d, "yield_stress", where, 0.0) if "yield_stress" in d else None,
+        **options,
     )
 
 

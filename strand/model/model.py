@@ -8,6 +8,8 @@ order. Units: m, N, Pa, rad.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import dolfinx
 import numpy as np
 import numpy.typing as npt
@@ -32,23 +34,53 @@ from .strand_contact import (
     sliding_windows,
 )
 
-__all__ = ["StrandModel", "chosen_same_layer_pairs", "layer_section", "strand_stencils"]
+__all__ = [
+    "BeamFactory",
+    "StrandModel",
+    "chosen_same_layer_pairs",
+    "layer_section",
+    "strand_stencils",
+]
 
 Array = npt.NDArray[np.float64]
+
+#: builds a strand's beam from its unknown w (the (6,)-valued P1 function of every wire) and the
+#: layers' section (``layer_section``): ``ReissnerBeam`` or a law of one's own with its interface
+BeamFactory = Callable[[fem.Function, CircularSection], ReissnerBeam]
 
 #: the (P, 3) arrays of ``StrandModel.pair_results``
 PAIR_VECTORS = ("friction", "normal", "slip", "sliding")
 
 
 def layer_section(cmesh: CableMesh) -> CircularSection:
-    """Circular sections with the diameter and elastic constants of each cell's layer (DG0)."""
+    """Circular sections with the diameter and elastic constants of each cell's layer (DG0):
+    d (m), E (Pa), ν, and the cable's ``shear_coefficient`` κ and ``torsional_stiffness`` GJ
+    (N m²) where a layer gives them (a layer that does not takes the round section's; neither
+    is data of the forms when no layer gives it). Its ``layer`` (DG0) is each cell's layer
+    index, 0 the core, for a beam law on some layers only."""
     g = cmesh.geometry
     wires = [lay.wire for lay in g.cable.layers]
-    values = {
-        name: cell_function(cmesh.mesh, np.array([get(w) for w in wires])[g.cell_layer], name)
-        for name, get in (("d", lambda w: w.diameter), ("E", lambda w: w.E), ("nu", lambda w: w.nu))
-    }
-    return CircularSection(values["d"], values["E"], values["nu"])
+    own = [CircularSection(w.diameter, w.E, w.nu) for w in wires]  # the round sections'
+
+    def per_cell(values, name):
+        return cell_function(cmesh.mesh, np.array(values, dtype=float)[g.cell_layer], name)
+
+    def option(key, default):
+        given = [getattr(w, key) for w in wires]
+        if all(v is None for v in given):
+            return None
+        values = [default(s) if v is None else v for v, s in zip(given, own, strict=True)]
+        return per_cell(values, key)
+
+    section = CircularSection(
+        per_cell([w.diameter for w in wires], "d"),
+        per_cell([w.E for w in wires], "E"),
+        per_cell([w.nu for w in wires], "nu"),
+        shear_coefficient=option("shear_coefficient", lambda s: s.shear_coefficient),
+        torsional_stiffness=option("torsional_stiffness", lambda s: s.GJ),
+    )
+    section.layer = per_cell(np.arange(len(wires)), "layer")
+    return section
 
 
 def chosen_same_layer_pairs(
@@ -92,6 +124,14 @@ class StrandModel:
     Args:
         geometry: the strand (``build_geometry``).
         contact: contact settings (normal, penalties, friction, small or large sliding).
+        comm: the ranks the mesh is distributed over.
+        beam: the beam law of every wire, called once as ``beam(w, section)`` with the unknown
+            ``w`` of the whole strand and the layers' section (``layer_section``: cell-wise d,
+            E, ν, κ, GJ and ``layer``); default ``ReissnerBeam``. A law of one's own subclasses
+            ``ReissnerBeam`` (``forms``' "what to override"); its ``residual()`` is the wires'
+            part of the problem, its ``N`` and ``M`` are what the field files and section cuts
+            read. The fatigue stresses (``strand.fatigue.stress``) stay Navier's, of a linear
+            elastic round wire.
     """
 
     def __init__(
@@ -99,6 +139,8 @@ class StrandModel:
         geometry: StrandGeometry,
         contact: ContactSettings | None = None,
         comm: MPI.Comm = MPI.COMM_WORLD,
+        *,
+        beam: BeamFactory = ReissnerBeam,
     ):
         self.geometry = geometry
         self.contact_settings = cs = contact or ContactSettings()
@@ -111,7 +153,7 @@ class StrandModel:
         self.V = beam_space(self.cmesh.mesh)
         self.w = fem.Function(self.V, name="w")
         self.section = layer_section(self.cmesh)
-        self.beam = ReissnerBeam(self.w, self.section)
+        self.beam = beam(self.w, self.section)
         self._energy_form: fem.Form | None = None  # compiled at the first ``strain_energy``
         self.i2b = input_to_block(self.V)
         #: dof blocks this rank owns (0 … n_owned − 1; ghosts follow), and their input points

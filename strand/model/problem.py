@@ -16,13 +16,15 @@ import numpy.typing as npt
 from mpi4py import MPI
 from petsc4py import PETSc
 
+from forms import ReissnerBeam
+
 from ..cable.geometry import StrandGeometry
 from ..setups.base import TestSetup
 from ..solver import NewtonOptions, NonlinearProblem
 from ..solver.convergence import STALL_AFTER
 from ..solver.ordering import ORDERINGS, cheapest_ordering
 from .contact_settings import ContactSettings
-from .model import StrandModel
+from .model import BeamFactory, StrandModel
 from .pair_results import PairResults
 
 __all__ = ["StrandProblem"]
@@ -43,6 +45,10 @@ class StrandProblem:
         contact: contact settings (normal, penalties, friction).
         options: Newton settings (a ``stall_after`` of None takes strand's ``STALL_AFTER``).
         setup: builds the test set-up from the model (e.g. ``strand.setups.SaddleTest``).
+        comm: the ranks the strand is distributed over.
+        monitor: called as ``monitor(iteration, residual_norm)`` at every Newton iteration.
+        beam: the wires' beam law, ``beam(w, section)`` (``StrandModel``); default
+            ``ReissnerBeam``.
     """
 
     def __init__(
@@ -54,8 +60,9 @@ class StrandProblem:
         setup: Callable[[StrandModel], TestSetup],
         comm: MPI.Comm = MPI.COMM_WORLD,
         monitor=None,
+        beam: BeamFactory = ReissnerBeam,
     ):
-        self.model = StrandModel(geometry, contact, comm)
+        self.model = StrandModel(geometry, contact, comm, beam=beam)
         self.setup = setup(self.model)
         # MUMPS ordering: PORD unless the case sets one; a large strand's pattern is factorised
         # with PORD and AMF once, and the cheaper kept (``strand.solver.ordering``)

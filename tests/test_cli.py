@@ -53,7 +53,8 @@ def seven(tmp_path) -> Path:
         ),
         (
             ["{case}", "--set", "cable.core.nuu=0.3"],
-            "the cable's core has no key 'nuu'; valid: E, diameter, friction, nu, yield_stress$",
+            "the cable's core has no key 'nuu'; valid: E, diameter, friction, nu, "
+            "tensile_strength, yield_stress$",
         ),
         (
             ["{case}", "--set", "cable.layer.1.colour=1"],

@@ -53,6 +53,8 @@ def cable_table(cable: Cable) -> dict:
         out = {"diameter": w.diameter, "E": w.E, "nu": w.nu}
         if w.yield_stress is not None:
             out["yield_stress"] = w.yield_stress
+        if w.tensile_strength is not None:
+            out["tensile_strength"] = w.tensile_strength
         return out
 
     return {

@@ -2,7 +2,8 @@
 
 SI units: diameters in m, moduli and stresses in Pa, lay angles in degrees (measured from the strand
 axis). A wire may give its ``yield_stress`` (optional): a run then warns when a wire's axial stress
-exceeds it.
+exceeds it; and its ``tensile_strength`` σ_u (optional): the fatigue report's mean-stress correction
+needs it (``strand.fatigue.meanstress``).
 A description comes from a TOML file (see ``strand/cable/data/cardinal.toml``) or a dict; every
 field is checked and errors name the field (``CableError``).
 """
@@ -42,6 +43,7 @@ class Wire:
     E: float  # Pa
     nu: float  # -
     yield_stress: float | None = None  # Pa; a run warns when a wire's axial stress exceeds it
+    tensile_strength: float | None = None  # Pa, σ_u; the fatigue mean-stress correction needs it
 
     @property
     def area(self) -> float:
@@ -103,9 +105,19 @@ class Cable:
 
 
 #: the fields of the core's table and of a layer's
-CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", "yield_stress"})
+CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", "yield_stress", "tensile_strength"})
 LAYER_KEYS = frozenset(
-    {"wires", "diameter", "E", "nu", "lay_angle", "lay", "friction", "yield_stress"}
+    {
+        "wires",
+        "diameter",
+        "E",
+        "nu",
+        "lay_angle",
+        "lay",
+        "friction",
+        "yield_stress",
+        "tensile_strength",
+    }
 )
 
 
@@ -115,6 +127,7 @@ UNITS = {
     "E": "Pa",
     "nu": "",
     "yield_stress": "Pa",
+    "tensile_strength": "Pa",
     "lay_angle": "°",
     "friction": "",
 }
@@ -144,6 +157,9 @@ def _wire(d: dict, where: str) -> Wire:
         E=_number(d, "E", where, 0.0),
         nu=_number(d, "nu", where, -1.0, 0.5),
         yield_stress=_number(d, "yield_stress", where, 0.0) if "yield_stress" in d else None,
+        tensile_strength=(
+            _number(d, "tensile_strength", where, 0.0) if "tensile_strength" in d else None
+        ),
     )
 
 

@@ -96,7 +96,24 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     sn_b2 = -0.17
     sn_layers = []            # layers (0 = core) the curve applies to; [] = those with E < 100 GPa
     steel_sn_curve = "en1992-prestressing-steel"  # the other steel wires' (E ≥ 100 GPa) curve,
-                              #   or "en1992-steel-duct" (fretting), or "none": not assessed
+                              #   or "en1992-steel-duct" (fretting), "user", or "none": not assessed
+    user_sn_m1 = 0.0          # a user's own curve, for sn_curve or steel_sn_curve = "user":
+                              #   N = a1 Δσ^-m1 (Δσ the range in MPa) up to user_sn_knee cycles,
+    user_sn_m2 = 0.0          #   slope m2 beyond (0: m1 throughout), continuous at the knee;
+    user_sn_log_a = 0.0       #   the intercept: log10 a1, or
+    user_sn_range = 0.0       #   the range Δσ0 (Pa) at
+    user_sn_cycles = 2e6      #   this many cycles
+    user_sn_knee = 1e7        # cycles
+    user_sn_given = "characteristic"  # the curve as given: characteristic | mean
+    user_sn_use = "characteristic"    # the curve assessed with: characteristic | mean; from one
+    user_sn_sd = 0.0          #   to the other by 2 standard deviations of log10 N (this one)
+    user_sn_mean = 0.0        # Pa, the mean stress of the user curve's tests (0: fully reversed)
+    mean_stress = "none"      # wire-level mean-stress correction: none | goodman | gerber | swt,
+                              #   with the wires' tensile_strength; cycles go to the curve's mean
+                              #   (0, or user_sn_mean): the built-in curves come from tensioned
+                              #   tests, so a correction counts their mean twice (conservative)
+    design_fatigue_factor = 1.0   # DFF: every damage, wire-level and T–N, is the Miner sum × DFF
+                              #   (lives ÷ DFF); 1: none; the standards' values: docs/fatigue.md
     surface_points = 16       # points around each wire's circumference (ranges within 2 %)
     clamp_distance = 0.089    # m, Poffenberger–Swart's distance from the clamp (3.5 in)
     end_zone = 0.0            # m, clamp zone at each end, reported apart from the free span;
@@ -149,7 +166,15 @@ BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
 #: names its own: ``SetupKind.signed``)
 _SIGNED = {("fatigue", "sn_b"), ("fatigue", "sn_b2")}
 #: settings for which 0 means "off" (they must not be negative)
-_ZERO_IS_OFF = {("steps", "balance"), ("fatigue", "end_zone"), ("fatigue", "breaking_strength")}
+_ZERO_IS_OFF = {
+    ("steps", "balance"),
+    ("fatigue", "end_zone"),
+    ("fatigue", "breaking_strength"),
+    *(
+        ("fatigue", f"user_sn_{key}")
+        for key in ("m1", "m2", "log_a", "range", "sd", "mean")  # 0: not given
+    ),
+}
 #: whole numbers from 0 up
 _COUNTS = {("contact", "gap_seed")}
 

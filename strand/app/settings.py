@@ -154,7 +154,7 @@ class FatigueSettings:
     user_sn_knee: float = 1e7  # cycles where the slope turns from m1 to m2
     user_sn_given: str = "characteristic"  # the curve as given: "characteristic" or "mean"
     user_sn_use: str = "characteristic"  # the one assessed with: "characteristic" or "mean"
-    user_sn_sd: float = 0.0  # standard deviation of log10 N, to move between the two (2 of them)
+    user_sn_sd: float = 0.0  # std. deviation of log10 N (characteristic: 2 below the mean)
     user_sn_mean: float = 0.0  # Pa, the mean stress of the curve's tests (0: fully reversed)
     mean_stress: str = "none"  # wire cycles' mean-stress correction: none, goodman, gerber, swt
     design_fatigue_factor: float = 1.0  # DFF: every damage (wire and T–N) × DFF; 1: none

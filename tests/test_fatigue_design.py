@@ -311,6 +311,9 @@ def test_the_design_fatigue_factor_multiplies_every_damage_exactly(cycled_run):
     assert t3.dnv == pytest.approx(3 * t.dnv, rel=1e-15)
     assert t3.api == pytest.approx(3 * t.api, rel=1e-15)
     assert "design fatigue factor 3" in design.text and "design fatigue factor" not in plain.text
+    user = FatigueSettings(steel_sn_curve="user", user_sn_m1=M1, user_sn_log_a=LOG_A)
+    mine = fatigue_report(cycled_run, cable, TENSION, user, write=False)
+    assert set(mine.wires.curve) == {"user"} and "user curve (characteristic)" in mine.text
 
 
 def test_goodman_damages_each_element_at_its_equivalent_ranges(cycled_run):
@@ -342,3 +345,40 @@ def test_goodman_damages_each_element_at_its_equivalent_ranges(cycled_run):
         header = next(csv.reader(f))
     assert "mean_stress" not in header and "design_fatigue_factor" not in header
     assert "mean stress" not in (cycled_run / "fatigue.txt").read_text()
+
+
+def test_a_spectrum_sums_the_design_damages_and_says_so(tmp_path):
+    """A two-amplitude spectrum of the 1+6's tension cycle with DFF 3 and Goodman: per wire and
+    zone, spectrum.csv's D is 3 times Σ nᵢ dᵢ of the members reported again without the factor
+    (to its six digits), and spectrum.txt and spectrum.csv name the factor and the law."""
+    counts = {1e3: 1e5, 2e3: 1e4}
+    spectrum = ", ".join(f"[{a!r}, {n!r}]" for a, n in counts.items())
+    text = TENSION_CYCLE.replace("[cable.core]", f"[cable.core]\ntensile_strength = {S_U!r}")
+    text = text.replace("[[cable.layer]]", f"[[cable.layer]]\ntensile_strength = {S_U!r}")
+    text += (
+        f"[fatigue]\nspectrum = [{spectrum}]\ndesign_fatigue_factor = 3.0\n"
+        f'mean_stress = "goodman"\nbreaking_strength = {BREAKING!r}\n'
+    )
+    case = tmp_path / "spectrum.toml"
+    case.write_text(text)
+    out = tmp_path / "out"
+    assert main(["run", str(case), "--out", str(out)]) == 0
+    cable = _strong(seven_wire(length=0.1).cable)
+    settings = FatigueSettings(mean_stress="goodman", breaking_strength=BREAKING)
+    members = {
+        a: fatigue_report(out / f"tension_swing_{a:g}", cable, TENSION, settings, write=False)
+        for a in counts
+    }
+    total = sum(n * members[a].elements.damage for a, n in counts.items())
+    clamp = members[1e3].elements.clamp
+    with open(out / "spectrum.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert {r["design_fatigue_factor"] for r in rows} == {"3"}
+    assert {r["mean_stress"] for r in rows} == {"goodman"}
+    for r in rows:
+        mine = (members[1e3].elements.wire == int(r["wire"])) & (
+            clamp == (r["zone"] != "free span")
+        )
+        assert float(r["damage"]) == pytest.approx(3 * total[mine].max(), rel=1e-5)
+    summary = (out / "spectrum.txt").read_text()
+    assert "design fatigue factor 3" in summary and "mean stress: Goodman" in summary

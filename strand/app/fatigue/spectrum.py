@@ -161,8 +161,8 @@ def spectrum_report(case: Case, results: list, parameter: str, unit: str) -> Spe
         tension=_tension(reports, counts),
         end_zone=first.end_zone,
         length=first.length,
-        mean_stress=first.mean_stress,
-        design_factor=first.design_factor,
+        mean_stress=case.fatigue.mean_stress,
+        design_factor=case.fatigue.design_fatigue_factor,
     )
     return replace(report, text=spectrum_text(report))
 

@@ -120,8 +120,8 @@ class SpectrumReport:
     Attributes:
         end_zone: the clamp zone's length at each end, m.
         length: the span, m.
-        mean_stress, design_factor: the members' mean-stress correction and design fatigue
-            factor (``findings.FatigueReport``), which every D includes.
+        mean_stress, design_factor: the case's mean-stress correction and design fatigue
+            factor, the members' (``findings.FatigueReport``), which every D includes.
     """
 
     parameter: str

@@ -56,7 +56,7 @@ def seven(tmp_path) -> Path:
         (
             ["{case}", "--set", "cable.core.nuu=0.3"],
             "the cable's core has no key 'nuu'; valid: E, diameter, friction, nu, "
-            "shear_coefficient, torsional_stiffness, yield_stress$",
+            "shear_coefficient, tensile_strength, torsional_stiffness, yield_stress$",
         ),
         (
             ["{case}", "--set", "cable.layer.1.colour=1"],

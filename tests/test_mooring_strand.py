@@ -40,14 +40,15 @@ def _area(diameters) -> float:
 
 def test_the_strand_is_the_sources_construction():
     """Per layer the source's number of wires (120 in all: "the 120-wire spiral strand") and wire
-    diameter, layer 2's excepted (3.1 mm assumed for 3.2 mm); E and the yield stress of every
-    wire; alternating lay hands with the outer layer right hand (assumed)."""
+    diameter, layer 2's excepted (3.1 mm assumed for 3.2 mm); E, the yield stress and the tensile
+    strength of every wire; alternating lay hands with the outer layer right hand (assumed)."""
     c = judge120()
     assert [lay.wires for lay in c.layers] == WIRES and c.n_wires == 120
     used = [*DIAMETERS[:2], LAYER_2_USED, *DIAMETERS[3:]]
     assert [lay.wire.diameter for lay in c.layers] == pytest.approx(used, rel=1e-12)
     assert {lay.wire.E for lay in c.layers} == {E}
     assert {lay.wire.yield_stress for lay in c.layers} == {YIELD}
+    assert {lay.wire.tensile_strength for lay in c.layers} == {TENSILE}
     assert [lay.lay for lay in c.layers[1:]] == ["S", "Z", "S", "Z", "S", "Z"]
 
 

@@ -100,7 +100,24 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     sn_b2 = -0.17
     sn_layers = []            # layers (0 = core) the curve applies to; [] = those with E < 100 GPa
     steel_sn_curve = "en1992-prestressing-steel"  # the other steel wires' (E ≥ 100 GPa) curve,
-                              #   or "en1992-steel-duct" (fretting), or "none": not assessed
+                              #   or "en1992-steel-duct" (fretting), "user", or "none": not assessed
+    user_sn_m1 = 0.0          # a user's own curve (sn_curve or steel_sn_curve = "user"),
+                              #   N = a1 Δσ^-m1 (Δσ the range in MPa): its slope to the knee
+    user_sn_m2 = 0.0          # its slope beyond the knee, continuous there; 0: m1 throughout
+    user_sn_log_a = 0.0       # its intercept log10 a1 (Δσ in MPa); 0: user_sn_range instead
+    user_sn_range = 0.0       # Pa, or its intercept as the range at user_sn_cycles
+    user_sn_cycles = 2e6      # cycles at which user_sn_range is given
+    user_sn_knee = 1e7        # cycles where the slope turns from m1 to m2
+    user_sn_given = "characteristic"  # the user curve as given: characteristic | mean
+    user_sn_use = "characteristic"    # the user curve assessed with: characteristic | mean
+    user_sn_sd = 0.0          # standard deviation of log10 N: the characteristic curve lies two
+                              #   of them below the mean (needed where use and given differ)
+    user_sn_mean = 0.0        # Pa, the mean stress of the user curve's tests (0: fully reversed)
+    mean_stress = "none"      # wire-level mean-stress correction: none | goodman | gerber | swt
+                              #   (with the wires' tensile_strength); none: the built-in curves
+                              #   come from tensioned tests (docs/fatigue.md)
+    design_fatigue_factor = 1.0   # DFF: every damage, wire-level and T–N, is the Miner sum × DFF
+                              #   (lives ÷ DFF); 1: none; the standards' values: docs/fatigue.md
     surface_points = 16       # points around each wire's circumference (ranges within 2 %)
     clamp_distance = 0.089    # m, Poffenberger–Swart's distance from the clamp (3.5 in)
     end_zone = 0.0            # m, clamp zone at each end, reported apart from the free span;
@@ -160,6 +177,10 @@ _ZERO_IS_OFF = {
     ("steps", "stabilise"),
     ("fatigue", "end_zone"),
     ("fatigue", "breaking_strength"),
+    *(
+        ("fatigue", f"user_sn_{key}")
+        for key in ("m1", "m2", "log_a", "range", "sd", "mean")  # 0: not given
+    ),
 }
 #: whole numbers from 0 up
 _COUNTS = {("contact", "gap_seed")}

@@ -15,6 +15,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ..cable.description import Cable, CableError
+from ..fatigue.meanstress import MEAN_STRESS_LAWS
 from ..fatigue.sn import SN_CURVES
 from ..model.layer_states import first_layer_lift
 from ..solver.convergence import ITERATIONS
@@ -110,16 +111,19 @@ def _check_contact(case: Case) -> None:
 
 
 def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
-    if fatigue.sn_curve not in (*SN_CURVES, "custom"):
+    if fatigue.sn_curve not in (*SN_CURVES, "custom", "user"):
         raise CaseError(
             f"[fatigue] sn_curve = {fatigue.sn_curve!r} is unknown; choose one of "
-            f'{sorted(SN_CURVES)} or "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2)'
+            f'{sorted(SN_CURVES)}, "custom" (with sn_A, sn_b, sn_knee, sn_A2, sn_b2) or "user" '
+            "(with user_sn_*)"
         )
-    if fatigue.steel_sn_curve not in (*SN_CURVES, "none"):
+    if fatigue.steel_sn_curve not in (*SN_CURVES, "none", "user"):
         raise CaseError(
             f"[fatigue] steel_sn_curve = {fatigue.steel_sn_curve!r} is unknown; choose one of "
-            f'{sorted(SN_CURVES)} or "none"'
+            f'{sorted(SN_CURVES)}, "user" (with user_sn_*) or "none"'
         )
+    if fatigue.uses_user_curve():
+        _check_user_curve(fatigue)
     try:
         fatigue.curve()
     except ValueError as e:
@@ -132,6 +136,79 @@ def _check_fatigue(fatigue: FatigueSettings, cable: Cable) -> None:
             f"[fatigue] sn_layers = {list(fatigue.sn_layers)}: layers are numbered 0 (core) to "
             f"{len(cable.layers) - 1}"
         )
+    if fatigue.design_fatigue_factor < 1:
+        raise CaseError(
+            f"[fatigue] design_fatigue_factor = {fatigue.design_fatigue_factor:g}: expected 1 or "
+            "more (it multiplies every damage; 1: none)"
+        )
+    _check_mean_stress(fatigue, cable)
+
+
+def _check_user_curve(fatigue: FatigueSettings) -> None:
+    """The user's own S–N curve complete and plausible (one line each)."""
+    f = fatigue
+    which = "sn_curve" if f.sn_curve == "user" else "steel_sn_curve"
+    if not f.user_sn_m1 > 0:
+        raise CaseError(
+            f'[fatigue] {which} = "user" needs user_sn_m1, the slope m1 of N = a1 Δσ^-m1 up to '
+            "the knee"
+        )
+    if bool(f.user_sn_log_a) == bool(f.user_sn_range):
+        raise CaseError(
+            f'[fatigue] {which} = "user" needs one intercept: user_sn_log_a (log10 a1, Δσ in '
+            "MPa) or user_sn_range (Pa) at user_sn_cycles, "
+            + ("not both" if f.user_sn_log_a else "none is given")
+        )
+    if f.user_sn_range and f.user_sn_range < 1e6:
+        raise CaseError(
+            f"[fatigue] user_sn_range = {f.user_sn_range:g} Pa is below 1 MPa: did you mean "
+            f"{f.user_sn_range:g}e6 (Pa)?"
+        )
+    for key in ("user_sn_given", "user_sn_use"):
+        if getattr(f, key) not in ("characteristic", "mean"):
+            raise CaseError(
+                f'[fatigue] {key} = {getattr(f, key)!r}: expected "characteristic" or "mean"'
+            )
+    if f.user_sn_given != f.user_sn_use and not f.user_sn_sd > 0:
+        raise CaseError(
+            f'[fatigue] user_sn_use = "{f.user_sn_use}" from a {f.user_sn_given} curve needs '
+            "user_sn_sd, the standard deviation of log10 N (the characteristic curve lies 2 of "
+            "them below the mean)"
+        )
+    curve = f.user_curve()
+    at_knee = 2 * curve.A * curve.knee**curve.b  # MPa
+    if not 1 <= at_knee <= 1e4:
+        raise CaseError(
+            f"[fatigue] the user curve gives a range of {at_knee:.3g} MPa at its knee "
+            f"({f.user_sn_knee:.3g} cycles), outside 1 to 10000 MPa: log10 a1 is for Δσ in MPa"
+        )
+
+
+def _check_mean_stress(fatigue: FatigueSettings, cable: Cable) -> None:
+    """A known law, and the tensile strength of every assessed layer's wires, above the user
+    curve's mean where that curve is corrected."""
+    law = fatigue.mean_stress
+    if law not in MEAN_STRESS_LAWS:
+        raise CaseError(
+            f"[fatigue] mean_stress = {law!r} is unknown; choose one of {list(MEAN_STRESS_LAWS)}"
+        )
+    if law == "none":
+        return
+    missing = fatigue.unknown_strength(cable)
+    if missing:
+        raise CaseError(
+            f"[fatigue] mean_stress = {law!r} needs the wires' tensile strength: the cable "
+            f"{cable.name!r} gives none for layer(s) {missing} (tensile_strength, Pa, in the "
+            "cable's tables)"
+        )
+    user = fatigue.user_curve() if fatigue.uses_user_curve() else None
+    for i, (lay, curve) in enumerate(zip(cable.layers, fatigue.curves(cable), strict=True)):
+        if curve is not None and curve == user:
+            if not fatigue.user_sn_mean < lay.wire.tensile_strength:
+                raise CaseError(
+                    f"[fatigue] user_sn_mean = {fatigue.user_sn_mean:g} Pa is not below the "
+                    f"tensile strength of layer {i}'s wires ({lay.wire.tensile_strength:g} Pa)"
+                )
 
 
 def _spectrum_sweep(case: Case) -> Case:

@@ -139,14 +139,27 @@ class OutputSettings:
 @dataclass(frozen=True)
 class FatigueSettings:
     outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
-    sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES) or "custom"
+    sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES), "custom", "user"
     sn_A: float = 450.0  # MPa, custom: σ_a = A N^b up to the knee
     sn_b: float = -0.2  # custom: the exponent b up to the knee
     sn_knee: float = 2e7  # cycles
     sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
     sn_b2: float = -0.17  # custom: the exponent b2 beyond the knee
     sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
-    steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, or "none"
+    steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, "user" or "none"
+    # a user's own curve (sn_curve or steel_sn_curve "user"): N = a1 Δσ^-m1, Δσ the range in MPa
+    user_sn_m1: float = 0.0  # its slope up to the knee (required)
+    user_sn_m2: float = 0.0  # its slope beyond the knee; 0: m1 throughout
+    user_sn_log_a: float = 0.0  # log10 a1 (Δσ in MPa); 0: the intercept is user_sn_range instead
+    user_sn_range: float = 0.0  # Pa, the range Δσ0 at user_sn_cycles (instead of user_sn_log_a)
+    user_sn_cycles: float = 2e6  # cycles at which user_sn_range is given
+    user_sn_knee: float = 1e7  # cycles where the slope turns from m1 to m2
+    user_sn_given: str = "characteristic"  # the curve as given: "characteristic" or "mean"
+    user_sn_use: str = "characteristic"  # the one assessed with: "characteristic" or "mean"
+    user_sn_sd: float = 0.0  # std. deviation of log10 N (characteristic: 2 below the mean)
+    user_sn_mean: float = 0.0  # Pa, the mean stress of the curve's tests (0: fully reversed)
+    mean_stress: str = "none"  # wire cycles' mean-stress correction: none, goodman, gerber, swt
+    design_fatigue_factor: float = 1.0  # DFF: every damage (wire and T–N) × DFF; 1: none
     surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
     clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
     end_zone: float = 0.0  # m, clamp zone at each end; 0: half the longest lay length
@@ -160,6 +173,15 @@ class FatigueSettings:
         "sn_knee": "cycles",
         "sn_A2": "MPa",
         "sn_b2": "",
+        "user_sn_m1": "",
+        "user_sn_m2": "",
+        "user_sn_log_a": "",
+        "user_sn_range": "Pa",
+        "user_sn_cycles": "cycles",
+        "user_sn_knee": "cycles",
+        "user_sn_sd": "",
+        "user_sn_mean": "Pa",
+        "design_fatigue_factor": "",
         "surface_points": "",
         "clamp_distance": "m",
         "end_zone": "m",
@@ -167,10 +189,47 @@ class FatigueSettings:
         "breaking_strength": "N",
     }
 
+    def user_curve(self):
+        """The user's own S–N curve (``user_sn_*``; ``strand.fatigue.sn.user_curve``): the one
+        ``user_sn_use`` names, moved from the one given by ``CHARACTERISTIC_SDS`` standard
+        deviations ``user_sn_sd`` of log10 N where the two differ."""
+        from ..fatigue.sn import CHARACTERISTIC_SDS, user_curve
+
+        sign = {"mean": 1, "characteristic": 0}
+        shift = (sign[self.user_sn_use] - sign[self.user_sn_given]) * CHARACTERISTIC_SDS
+        point = (self.user_sn_range, self.user_sn_cycles) if self.user_sn_range else None
+        intercept = (
+            f"Δσ = {1e-6 * self.user_sn_range:g} MPa at {self.user_sn_cycles:.3g} cycles"
+            if point
+            else f"log10 a1 = {self.user_sn_log_a:g} (Δσ in MPa)"
+        )
+        beyond = f", m2 = {self.user_sn_m2:g} beyond" if self.user_sn_m2 else ""
+        moved = (
+            f", moved from the {self.user_sn_given} one given by {abs(shift):g} × "
+            f"{self.user_sn_sd:g} in log10 N"
+            if shift
+            else ""
+        )
+        name = (
+            f"user curve ({self.user_sn_use}): N = a1 Δσ^-{self.user_sn_m1:g}, {intercept}, "
+            f"knee {self.user_sn_knee:.3g} cycles{beyond}{moved}"
+        )
+        return user_curve(
+            self.user_sn_m1,
+            self.user_sn_knee,
+            log_a=self.user_sn_log_a,
+            point=point,
+            m2=self.user_sn_m2,
+            shift=shift * self.user_sn_sd,
+            name=name,
+        )
+
     def curve(self):
         """The S–N curve these settings name (``strand.fatigue.SNCurve``)."""
         from ..fatigue.sn import SN_CURVES, SNCurve
 
+        if self.sn_curve == "user":
+            return self.user_curve()
         if self.sn_curve == "custom":
             return SNCurve(
                 "custom (case file)",
@@ -194,10 +253,48 @@ class FatigueSettings:
         ``layers``, ``steel_sn_curve`` on the other steel layers (E ≥ 100 GPa)."""
         from ..fatigue.sn import SN_CURVES, wire_material
 
-        mine, steel = self.layers(cable), SN_CURVES.get(self.steel_sn_curve)
+        mine = self.layers(cable)
+        steel = (
+            self.user_curve()
+            if self.steel_sn_curve == "user"
+            else SN_CURVES.get(self.steel_sn_curve)
+        )
         return [
             self.curve() if i in mine else steel if wire_material(lay.wire.E) == "steel" else None
             for i, lay in enumerate(cable.layers)
+        ]
+
+    def uses_user_curve(self) -> bool:
+        """Whether ``sn_curve`` or ``steel_sn_curve`` names the user's own curve."""
+        return "user" in (self.sn_curve, self.steel_sn_curve)
+
+    def unknown_strength(self, cable: Cable) -> list[int]:
+        """The assessed layers (with a curve) whose wires give no tensile strength."""
+        return [
+            i
+            for i, (lay, curve) in enumerate(zip(cable.layers, self.curves(cable), strict=True))
+            if curve is not None and lay.wire.tensile_strength is None
+        ]
+
+    def mean_stress_corrections(self, cable: Cable) -> list:
+        """Per layer (0 = core), its wires' mean-stress correction
+        (``strand.fatigue.meanstress.MeanStress``), or None: no ``mean_stress``, or no curve.
+        The user's curve is taken at its tests' mean ``user_sn_mean``, the others at zero."""
+        from ..fatigue.meanstress import MeanStress
+
+        curves = self.curves(cable)
+        if self.mean_stress == "none":
+            return [None] * len(curves)
+        user = self.user_curve() if self.uses_user_curve() else None
+        return [
+            None
+            if curve is None
+            else MeanStress(
+                self.mean_stress,
+                lay.wire.tensile_strength,
+                self.user_sn_mean if curve == user else 0.0,
+            )
+            for lay, curve in zip(cable.layers, curves, strict=True)
         ]
 
     def end_zone_length(self, cable: Cable) -> float:

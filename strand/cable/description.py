@@ -2,9 +2,11 @@
 
 SI units: diameters in m, moduli and stresses in Pa, lay angles in degrees (measured from the strand
 axis); a modulus under 1 GPa (``MIN_MODULUS``: one given in GPa, E = 210) is refused. A wire may
-give its ``yield_stress`` (optional): a run then warns when a wire's axial stress exceeds it; and
-its beam's ``shear_coefficient`` κ and ``torsional_stiffness`` GJ (N m²), optional too, which
-otherwise come from ν and the round section (``forms.CircularSection``).
+give its ``yield_stress`` (optional): a run then warns when a wire's axial stress exceeds it; its
+``tensile_strength`` σ_u (optional): the fatigue report's mean-stress correction needs it
+(``strand.fatigue.meanstress``); and its beam's ``shear_coefficient`` κ and
+``torsional_stiffness`` GJ (N m²), optional too, which otherwise come from ν and the round
+section (``forms.CircularSection``).
 A description comes from a TOML file (see ``strand/cable/data/cardinal.toml``) or a dict; every
 field is checked and errors name the field (``CableError``).
 """
@@ -47,6 +49,7 @@ class Wire:
     yield_stress: float | None = None  # Pa; a run warns when a wire's axial stress exceeds it
     shear_coefficient: float | None = None  # κ of κGA, in (0, 10); default 6(1+ν)/(7+6ν)
     torsional_stiffness: float | None = None  # N m², a wire's GJ, > 0; default G πd⁴/32
+    tensile_strength: float | None = None  # Pa, σ_u; the fatigue mean-stress correction needs it
 
     @property
     def area(self) -> float:
@@ -108,7 +111,7 @@ class Cable:
 
 
 #: optional fields of a wire (core or layer), None when not given
-WIRE_OPTIONS = ("yield_stress", "shear_coefficient", "torsional_stiffness")
+WIRE_OPTIONS = ("yield_stress", "tensile_strength", "shear_coefficient", "torsional_stiffness")
 #: the fields of the core's table and of a layer's
 CORE_KEYS = frozenset({"diameter", "E", "nu", "friction", *WIRE_OPTIONS})
 LAYER_KEYS = frozenset(
@@ -124,6 +127,7 @@ UNITS = {
     "yield_stress": "Pa",
     "shear_coefficient": "",
     "torsional_stiffness": "N m²",
+    "tensile_strength": "Pa",
     "lay_angle": "°",
     "friction": "",
 }
@@ -167,6 +171,7 @@ def _modulus(d: dict, where: str) -> float:
 #: the open range of each optional field of a wire
 WIRE_OPTION_RANGES = {
     "yield_stress": (0.0, math.inf),
+    "tensile_strength": (0.0, math.inf),
     "shear_coefficient": (0.0, 10.0),
     "torsional_stiffness": (0.0, math.inf),
 }

@@ -89,17 +89,18 @@ def _compact(values: npt.NDArray[np.float64], keep: npt.NDArray[np.bool_]):
     return out, keep.sum(axis=0)
 
 
-def repeating_ranges(series) -> npt.NDArray[np.float64]:
+def repeating_ranges(series, means: bool = False):
     """The ranges of ``repeating_cycles`` for each column of ``series`` (n steps, M histories)
-    at once: (M, C), padded with zeros (cycles of no range) to the largest count C. The same
-    count (rotation to the largest value, ``rainflow.reversals``, three-point rule) written
-    over all columns: a loop over the reversals, none over the histories."""
+    at once: (M, C), padded with zeros (cycles of no range) to the largest count C; with
+    ``means``, also the cycles' means (M, C), (v₀ + v₁)/2 of their turning points, 0 in the
+    padding. The same count (rotation to the largest value, ``rainflow.reversals``, three-point
+    rule) written over all columns: a loop over the reversals, none over the histories."""
     s = np.asarray(series, float)
     if s.ndim != 2:
         raise ValueError(f"series: (n steps, M histories) expected, got shape {s.shape}")
     n, m = s.shape
     if n < 2 or m == 0:
-        return np.zeros((m, 0))
+        return (np.zeros((m, 0)), np.zeros((m, 0))) if means else np.zeros((m, 0))
     # one period from the largest value round to it again
     order = (np.argmax(s, axis=0) + np.arange(n + 1)[:, None]) % n
     r = np.take_along_axis(s, order, axis=0)
@@ -115,6 +116,7 @@ def repeating_ranges(series) -> npt.NDArray[np.float64]:
     stack = np.zeros((m, len(v)))
     depth = np.zeros(m, dtype=np.intp)
     ranges = np.zeros((m, max(len(v) // 2, 1)))
+    centres = np.zeros_like(ranges)
     found = np.zeros(m, dtype=np.intp)
     cols = np.arange(m)
     for k in range(len(v)):
@@ -129,9 +131,12 @@ def repeating_ranges(series) -> npt.NDArray[np.float64]:
                 break
             c, v0, v1, v2 = c[closes], v0[closes], v1[closes], v2[closes]
             ranges[c, found[c]] = np.abs(v1 - v0)
+            centres[c, found[c]] = 0.5 * (v0 + v1)
             found[c] += 1
             stack[c, depth[c] - 3] = v2
             depth[c] -= 2
+    if means:
+        return ranges[:, : found.max()], centres[:, : found.max()]
     return ranges[:, : found.max()]
 
 

@@ -19,6 +19,14 @@ Built-in curves (``SN_CURVES``), each for one wire material (``SNCurve.material`
   ducts (120 MPa, k₂ = 7), whose lower curve comes from the wires fretting on the duct: the
   choice where a steel wire frets. Characteristic values (5 % fractile), without partial factor.
 
+A user's own curve (``user_curve``) is given in the form of the offshore standards, N = a₁ Δσ^(−m₁)
+(Δσ the stress range in MPa) up to the knee N_k, slope m₂ beyond it and continuous there; its
+intercept as log₁₀ a₁ or as the range Δσ₀ at a cycle count N₀. A curve given as the mean of its
+tests moves to the characteristic one, or back, by ``CHARACTERISTIC_SDS`` standard deviations of
+log₁₀ N at every stress (DNV-OS-C201, Sec. 7 A104: S–N curves "based on a 97.6% probability of
+survival, corresponding to the mean-minus-two-standard-deviation curves"), so the knee keeps its
+stress and its cycle count moves with the curve.
+
 Stresses here are in Pa.
 """
 
@@ -30,7 +38,16 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["SNCurve", "SN_CURVES", "miner_damage", "STEEL_MODULUS", "wire_material"]
+__all__ = [
+    "SNCurve",
+    "SN_CURVES",
+    "CHARACTERISTIC_SDS",
+    "miner_damage",
+    "STEEL_MODULUS",
+    "USER_SOURCE",
+    "user_curve",
+    "wire_material",
+]
 
 Array = npt.NDArray[np.float64]
 
@@ -134,6 +151,37 @@ SN_CURVES = {
         "steel",
     ),
 }
+
+
+#: standard deviations of log₁₀ N between a mean S–N curve and its characteristic one
+CHARACTERISTIC_SDS = 2.0
+#: the ``source`` of a user's own curve
+USER_SOURCE = "the case file ([fatigue] user_sn_*)"
+
+
+def user_curve(
+    m1: float,
+    knee: float,
+    *,
+    log_a: float = 0.0,
+    point: tuple[float, float] | None = None,
+    m2: float = 0.0,
+    shift: float = 0.0,
+    name: str = "user curve",
+    source: str = USER_SOURCE,
+) -> SNCurve:
+    """The curve N = a₁ Δσ^(−m₁) (Δσ in MPa) up to ``knee`` cycles, slope ``m2`` beyond (0: m₁
+    throughout), continuous at the knee; the intercept ``log_a`` = log₁₀ a₁, or ``point`` = (Δσ₀
+    in Pa, N₀): the range Δσ₀ at N₀ cycles, on whichever side of the knee N₀ lies. ``shift``
+    moves every life by 10^shift (log₁₀ N + shift), the knee's cycles with it."""
+    k2 = m2 or m1
+    if point is not None:
+        stress_range, cycles = point
+        k = m1 if cycles <= knee else k2
+        at_knee = stress_range / 1e6 * (cycles / knee) ** (1 / k)
+    else:
+        at_knee = (10.0**log_a / knee) ** (1 / m1)
+    return SNCurve.from_range(name, at_knee, knee * 10.0**shift, m1, k2, source)
 
 
 def miner_damage(ranges, counts, curve: SNCurve) -> float | Array:

@@ -51,11 +51,14 @@ def crossing_results(
     *,
     stuck_slip: float,
     clamp: npt.NDArray[np.bool_],
+    mean_stress: list | None = None,
+    factor: float = 1.0,
 ) -> CrossingResults:
     """Per pair: the worst counted cycle's fretting results, Hertz contact, Ruiz's parameters,
     whether it stayed stuck throughout (``stuck_slip``, m) and the Miner damage of the wires'
-    facing surfaces under their layers' ``curves`` (NaN where neither has one); ``clamp``: the
-    pairs in a clamp zone."""
+    facing surfaces under their layers' ``curves`` and ``mean_stress`` corrections, times
+    ``factor`` (NaN where neither has a curve); ``clamp``: the pairs in a clamp zone."""
+    mean_stress = mean_stress or [None] * len(curves)
     static = pairs.static
     per_cycle = crossing_cycles(
         cycles, pairs["force"], pairs["friction"], pairs["slip"], pairs["sliding"], pairs["work"]
@@ -109,7 +112,9 @@ def crossing_results(
         for layer, curve in enumerate(curves):
             mine = layers == layer
             if curve is not None and mine.any():
-                sides[side, mine] = repeating_damage(sigma_side[:, mine], curve)
+                sides[side, mine] = repeating_damage(
+                    sigma_side[:, mine], curve, mean_stress[layer], factor
+                )
     damage = np.fmax(sides[0], sides[1])  # the worse side; NaN where neither is assessed
     has = np.array([c is not None for c in curves])
     assessed = np.select(

@@ -1,5 +1,6 @@
 """The CSV files of the fatigue report and of a spectrum (``crossings.csv``, ``wire_stresses.csv``,
-``wires.csv``, ``spectrum.csv``, ``spectrum_crossings.csv``): one writer, a column per array."""
+``wires.csv``, ``spectrum.csv``, ``spectrum_crossings.csv``): one writer, a column per array;
+and the columns naming a mean-stress correction and a design fatigue factor."""
 
 from __future__ import annotations
 
@@ -9,7 +10,18 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["write_csv"]
+__all__ = ["write_csv", "assessment_columns"]
+
+
+def assessment_columns(mean_stress: str, factor: float, rows: int) -> dict[str, np.ndarray]:
+    """``rows`` rows of the columns ``mean_stress`` (the law) and ``design_fatigue_factor``,
+    each where there is one: without them the tables are as they were."""
+    columns: dict[str, np.ndarray] = {}
+    if mean_stress != "none":
+        columns["mean_stress"] = np.full(rows, mean_stress)
+    if factor != 1:
+        columns["design_fatigue_factor"] = np.full(rows, float(factor))
+    return columns
 
 
 def write_csv(

@@ -226,6 +226,9 @@ class FatigueReport:
         curves: per layer its S–N curve (None: not assessed).
         end_zone: the clamp zone's length at each end, m.
         length: the span, m.
+        mean_stress: the wire-level mean-stress correction, a law of
+            ``strand.fatigue.meanstress.MEAN_STRESS_LAWS`` ("none": the ranges as they are).
+        design_factor: the design fatigue factor every damage (wire-level and T–N) includes.
         text: the summary, ``fatigue.txt``.
     """
 
@@ -238,4 +241,6 @@ class FatigueReport:
     curves: list[SNCurve | None]
     end_zone: float
     length: float
+    mean_stress: str = "none"
+    design_factor: float = 1.0
     text: str = ""

@@ -43,7 +43,7 @@ from ...fatigue.zones import in_clamp_zone, zone_names
 from ..history import History, read_history
 from ..settings import FatigueSettings
 from .crossings import crossing_results
-from .csv_table import write_csv
+from .csv_table import assessment_columns, write_csv
 from .findings import ElementResults, FatigueReport, PoffenbergerSwartCheck
 from .tension_check import tension_check
 from .text import summary_text
@@ -129,6 +129,8 @@ def fatigue_report(
     sections = read_history(folder / "wire_sections.h5")
     cycles = _load_cycles(sections)
     curves = settings.curves(cable)
+    mean_stress = settings.mean_stress_corrections(cable)
+    factor = settings.design_fatigue_factor
     length = float(sections.static["core_z"].max())
     end_zone = settings.end_zone_length(cable)
     crossings = crossing_results(
@@ -139,12 +141,16 @@ def fatigue_report(
         cycles,
         stuck_slip=settings.stuck_slip,
         clamp=in_clamp_zone(pairs.static["z"], length, end_zone),
+        mean_stress=mean_stress,
+        factor=factor,
     )
     elements = element_results(
         sections,
         settings.surface_points,
         curves,
         in_clamp_zone(sections.static["z"], length, end_zone),
+        mean_stress,
+        factor,
     )
     wires = wire_results(elements, curves)
     poffenberger = (
@@ -159,11 +165,13 @@ def fatigue_report(
         crossings=crossings,
         elements=elements,
         wires=wires,
-        tension_check=tension_check(sections, cable, settings.breaking_strength, wires),
+        tension_check=tension_check(sections, cable, settings.breaking_strength, wires, factor),
         poffenberger_swart=poffenberger,
         curves=curves,
         end_zone=end_zone,
         length=length,
+        mean_stress=settings.mean_stress,
+        design_factor=factor,
     )
     report = replace(report, text=summary_text(report, settings))
     if write:
@@ -225,6 +233,7 @@ def write_report(folder: Path, pairs: History, sections: History, report: Fatigu
     )
     wires = report.wires
     columns = {"wire": np.arange(len(wires.layer)), "layer": wires.layer, "sn_curve": wires.curve}
+    columns |= assessment_columns(report.mean_stress, report.design_factor, len(wires.layer))
     for zone, results in (
         ("", wires.whole),
         ("_free_span", wires.free_span),

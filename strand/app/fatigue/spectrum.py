@@ -32,7 +32,7 @@ import numpy.typing as npt
 from ...fatigue.spectrum import spectrum_damage
 from ...fatigue.zones import ZONES, zone_names
 from ..settings import Case
-from .csv_table import write_csv
+from .csv_table import assessment_columns, write_csv
 from .findings import FatigueReport
 from .spectrum_findings import (
     SpectrumCrossings,
@@ -161,6 +161,8 @@ def spectrum_report(case: Case, results: list, parameter: str, unit: str) -> Spe
         tension=_tension(reports, counts),
         end_zone=first.end_zone,
         length=first.length,
+        mean_stress=case.fatigue.mean_stress,
+        design_factor=case.fatigue.design_fatigue_factor,
     )
     return replace(report, text=spectrum_text(report))
 
@@ -188,6 +190,7 @@ def write_spectrum(folder: Path, case: Case, results: list, parameter: str, unit
                 "layer": wires.layer,
                 "zone": zone_names(wires.zone == ZONES[1]),
                 "sn_curve": wires.curve,
+                **assessment_columns(report.mean_stress, report.design_factor, len(wires.wire)),
                 "element": wires.element,
                 "z_m": wires.z,
                 "damage": wires.damage,

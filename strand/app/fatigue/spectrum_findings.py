@@ -120,6 +120,8 @@ class SpectrumReport:
     Attributes:
         end_zone: the clamp zone's length at each end, m.
         length: the span, m.
+        mean_stress, design_factor: the case's mean-stress correction and design fatigue
+            factor, the members' (``findings.FatigueReport``), which every D includes.
     """
 
     parameter: str
@@ -133,4 +135,6 @@ class SpectrumReport:
     tension: SpectrumTension
     end_zone: float
     length: float = 0.0
+    mean_stress: str = "none"
+    design_factor: float = 1.0
     text: str = ""

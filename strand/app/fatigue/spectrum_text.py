@@ -12,7 +12,7 @@ import numpy.typing as npt
 
 from ...fatigue.tn import TENSION_CYCLE_SHARE
 from ...fatigue.zones import ZONES
-from .text import no_free_span
+from .text import assessment_lines, no_free_span
 
 if TYPE_CHECKING:
     from .spectrum_findings import SpectrumReport
@@ -120,6 +120,7 @@ def spectrum_text(report: SpectrumReport) -> str:
     wires = report.wires
     curves = sorted({(int(la), str(cu)) for la, cu in zip(wires.layer, wires.curve, strict=True)})
     lines.append("S–N curves: " + ", ".join(f"layer {la} {cu}" for la, cu in curves))
+    lines += assessment_lines(report.mean_stress, report.design_factor)
     for zone in ZONES:
         where = "" if zone == ZONES[0] else f" (within {report.end_zone:.3g} m of an end)"
         if not np.any(wires.zone == zone):

@@ -45,11 +45,16 @@ def midspan_axial_sum(sections: History, cable: Cable) -> Array:
 
 
 def tension_check(
-    sections: History, cable: Cable, breaking_strength: float, wires: WireResults
+    sections: History,
+    cable: Cable,
+    breaking_strength: float,
+    wires: WireResults,
+    factor: float = 1.0,
 ) -> TensionCheck:
     """The mooring standards' strand-level check on the strand's tension history, repeating:
-    DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage per cycle, beside the
-    wire-level model's largest; ``cycle`` False where the tension stays within
+    DNV-OS-E301's and (with a breaking strength, N) API RP 2SK's damage per cycle, times
+    ``factor`` (the design fatigue factor, as the wire-level damage), beside the wire-level
+    model's largest; ``cycle`` False where the tension stays within
     ``TENSION_CYCLE_SHARE`` of its mean. ``mean`` and ``range`` (N) are the largest cycle's:
     (max + min)/2 and max − min of the history. A mean over the recorded steps would weigh
     each leg by how finely the run stepped it."""
@@ -66,8 +71,8 @@ def tension_check(
         range=largest,
         area=area,
         cycle=largest >= TENSION_CYCLE_SHARE * abs(mean),
-        dnv=dnv,
-        api=api,
+        dnv=factor * dnv,
+        api=None if api is None else factor * api,
         wire=worst,
         wire_damage=float(damage[worst]) if worst is not None else np.nan,
     )

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...fatigue.meanstress import LAW_NAMES
 from ...fatigue.sn import SNCurve
 from ...fatigue.tn import TENSION_CYCLE_SHARE
 from ...fatigue.zones import ZONES, free_span
@@ -26,7 +27,7 @@ if TYPE_CHECKING:
         WireZone,
     )
 
-__all__ = ["summary_text", "no_free_span"]
+__all__ = ["summary_text", "no_free_span", "assessment_lines"]
 
 
 def no_free_span(length: float, end_zone: float) -> str:
@@ -37,6 +38,26 @@ def no_free_span(length: float, end_zone: float) -> str:
         f"{end_zone:.4g} m, [fatigue] end_zone); a span longer than {2 * end_zone:.4g} m, or an "
         f"end_zone shorter than {length / 2:.4g} m, leaves one"
     )
+
+
+def assessment_lines(mean_stress: str, factor: float) -> list[str]:
+    """The report's lines for a mean-stress correction and a design fatigue factor (none for
+    "none" and 1: the damage is then the plain Miner sum of the ranges)."""
+    lines = []
+    if mean_stress != "none":
+        lines.append(
+            f"  mean stress: {LAW_NAMES[mean_stress]} ([fatigue] mean_stress), the wires' tensile "
+            "strength from the cable: each cycle damages at its equivalent range at the curve's "
+            "own mean (0 for the built-in curves, which come from tensioned tests: their mean "
+            "then counts twice, conservative); the ranges printed are the cycles' own"
+        )
+    if factor != 1:
+        lines.append(
+            f"  design fatigue factor {factor:g} ([fatigue] design_fatigue_factor): every damage, "
+            f"wire-level and T–N, is the Miner sum × {factor:g}; repetitions and periods to "
+            f"failure are divided by {factor:g}"
+        )
+    return lines
 
 
 def _crossing_line(crossings: CrossingResults, k: int) -> str:
@@ -190,6 +211,7 @@ def summary_text(report: FatigueReport, settings: FatigueSettings) -> str:
         ),
         "Miner damage with the S–N curves:",
         *_curve_lines(report.curves),
+        *assessment_lines(report.mean_stress, report.design_factor),
     ]
     in_clamp = report.elements.clamp
     span = free_span(report.length, report.end_zone)

@@ -2,7 +2,10 @@
 element the surface point of largest stress range (``element_results``), per wire the largest
 over the whole wire and per zone (``wire_results``). Each point's stress history repeats (one
 steady repetition of the run's cycle, counted by rainflow closed on itself) and is damaged under
-its layer's S–N curve (Miner). Units: Pa, m; angles in degrees in the results.
+its layer's S–N curve (Miner): each counted cycle's range as it is, or its layer's mean-stress
+correction's equivalent range (``strand.fatigue.meanstress``; ``[fatigue] mean_stress``), and the
+sum times the design fatigue factor (``[fatigue] design_fatigue_factor``). Units: Pa, m; angles in
+degrees in the results.
 """
 
 from __future__ import annotations
@@ -11,7 +14,8 @@ import numpy as np
 import numpy.typing as npt
 
 from ...fatigue.cycles import repeating_ranges
-from ...fatigue.sn import SN_CURVES, SNCurve, miner_damage
+from ...fatigue.meanstress import MeanStress
+from ...fatigue.sn import SN_CURVES, USER_SOURCE, SNCurve, miner_damage
 from ...fatigue.stress import shear_stress, surface_stress
 from ..history import History
 from .findings import ElementResults, WireResults, WireZone
@@ -32,29 +36,48 @@ def surface_stress_at(sections: History, cells, angle) -> Array:
 
 
 def _curve_key(curve: SNCurve | None) -> str:
-    """The ``SN_CURVES`` key of ``curve`` ("custom" for a case file's, "not assessed" for None)."""
+    """The ``SN_CURVES`` key of ``curve`` ("user" for the user's own, "custom" for the case
+    file's ``sn_A``…, "not assessed" for None)."""
     if curve is None:
         return "not assessed"
+    if curve.source == USER_SOURCE:
+        return "user"
     return next((k for k, c in SN_CURVES.items() if c == curve), "custom")
 
 
-def repeating_damage(series: Array, curve: SNCurve | None) -> Array:
+def repeating_damage(
+    series: Array,
+    curve: SNCurve | None,
+    mean_stress: MeanStress | None = None,
+    factor: float = 1.0,
+) -> Array:
     """Miner damage of one repetition of each column of ``series`` (n steps, M histories) of
-    repeating stress (Pa): (M,), NaN where no curve applies."""
+    repeating stress (Pa), times ``factor`` (the design fatigue factor): (M,), NaN where no
+    curve applies. With ``mean_stress``, each cycle counts at its equivalent range."""
     series = np.asarray(series, float)
     if curve is None:
         return np.full(series.shape[1], np.nan)
-    return miner_damage(repeating_ranges(series), 1.0, curve)  # (M, C), padded with no range
+    if mean_stress is None:
+        ranges = repeating_ranges(series)  # (M, C), padded with no range
+    else:
+        ranges = mean_stress.ranges(*repeating_ranges(series, means=True))
+    return factor * miner_damage(ranges, 1.0, curve)
 
 
 def element_results(
-    sections: History, n_points: int, curves: list, clamp: npt.NDArray[np.bool_]
+    sections: History,
+    n_points: int,
+    curves: list,
+    clamp: npt.NDArray[np.bool_],
+    mean_stress: list | None = None,
+    factor: float = 1.0,
 ) -> ElementResults:
     """Per element: the surface point (of ``n_points`` around the wire) of largest stress range
     over the history, its range, mean and peak, the torsional shear range, and the Miner damage
     per cycle at the worst point of the element (every point's stress history repeating, under
-    its layer's curve in ``curves``; NaN where the layer has none); ``clamp``: the elements in a
-    clamp zone."""
+    its layer's curve in ``curves`` and correction in ``mean_stress``, times ``factor``; NaN
+    where the layer has no curve); ``clamp``: the elements in a clamp zone."""
+    mean_stress = mean_stress or [None] * len(curves)
     static = sections.static
     psi = _surface_angles(n_points)
     N, m1, m2 = (sections[k][..., None] for k in ("axial", "m1", "m2"))
@@ -69,7 +92,11 @@ def element_results(
         mine = np.flatnonzero(static["layer"] == layer)
         if curve is not None and len(mine):
             points = sigma[:, mine, :].reshape(len(sigma), -1)  # (S, elements × points)
-            damage[mine] = repeating_damage(points, curve).reshape(len(mine), -1).max(axis=1)
+            damage[mine] = (
+                repeating_damage(points, curve, mean_stress[layer], factor)
+                .reshape(len(mine), -1)
+                .max(axis=1)
+            )
     return ElementResults(
         wire=np.asarray(static["wire"]),
         layer=np.asarray(static["layer"]),

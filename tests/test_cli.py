@@ -138,7 +138,18 @@ def test_a_tension_far_from_the_breaking_strength_is_warned_of_in_one_line():
     )
     seven["load"]["tension"] = 10e3
     assert tension_warning(case_from_dict(seven)) == ""
-    assert tension_warning(load_case(None, ["load.tension=40.0"])) == ""  # Cardinal: no strength
+    seven["load"]["tension"] = 500.0  # a tensile strength is preferred to the yield stress
+    strong = {"tensile_strength": 1770e6}
+    seven["cable"]["core"] |= strong
+    seven["cable"]["layer"][0] |= strong
+    assert "tensile force Σ A σ_u (no [fatigue] breaking_strength given), 1.086e+05 N" in (
+        tension_warning(case_from_dict(seven))
+    )
+    # Cardinal's wires give their tensile strengths (1600 and 165 MPa): Σ A σ_u = 175.3 kN
+    assert tension_warning(load_case(None, ["load.tension=40.0"])).startswith(
+        "[load] tension = 40 N is 0.0228 % of the strand's wires' aggregate tensile force"
+    )
+    assert tension_warning(load_case(None)) == ""
 
 
 def test_a_run_warns_of_its_tension_once_and_its_summary_repeats_it(tmp_path, seven, capsys):

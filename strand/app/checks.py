@@ -239,17 +239,21 @@ def _spectrum_sweep(case: Case) -> Case:
 
 def _strength(case: Case) -> tuple[float, str] | None:
     """The breaking strength (N) the tension is held against, and what it is: ``[fatigue]
-    breaking_strength`` where given, else the wires' aggregate yield force Σ A σ_y where every
-    layer gives its yield stress (below the strand's break: the cable data has no tensile
-    strength); None without either."""
+    breaking_strength`` where given, else the wires' aggregate tensile force Σ A σ_u where every
+    layer gives its ``tensile_strength``, else their yield force Σ A σ_y where every layer gives
+    its ``yield_stress`` (below the strand's break); None without any."""
     given = case.fatigue.breaking_strength
     if given > 0:
         return given, "breaking strength ([fatigue] breaking_strength)"
     layers = case.cable.layers
-    if any(lay.wire.yield_stress is None for lay in layers):
-        return None
-    force = sum(lay.wires * lay.wire.area * lay.wire.yield_stress for lay in layers)
-    return force, "wires' aggregate yield force Σ A σ_y (no [fatigue] breaking_strength given)"
+    for key, what in (
+        ("tensile_strength", "wires' aggregate tensile force Σ A σ_u"),
+        ("yield_stress", "wires' aggregate yield force Σ A σ_y"),
+    ):
+        if all(getattr(lay.wire, key) is not None for lay in layers):
+            force = sum(lay.wires * lay.wire.area * getattr(lay.wire, key) for lay in layers)
+            return force, f"{what} (no [fatigue] breaking_strength given)"
+    return None
 
 
 def tension_warning(case: Case) -> str:

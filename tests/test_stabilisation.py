@@ -103,17 +103,44 @@ class HeldSolver(PathSolver):
         return super().solve()
 
 
-def test_a_failed_step_is_held_before_it_is_cut_and_released_once_committed():
+def test_a_settling_first_step_is_held_before_it_is_cut_and_released_once_committed():
+    """A settling ramp's first step (pairs closing with no friction yet) that fails is tried
+    again held, at the same increment; the springs are off from the next step on."""
+    held = Held()
+    stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
+    solver = HeldSolver(held, fails=lambda lam: lam <= 0.25)
+    _, records = ramp(
+        solver,
+        0.0,
+        1.0,
+        first_step=0.25,
+        min_step=0.01,
+        growth=1.0,
+        settles=True,
+        stabiliser=stabiliser,
+    )
+    assert [r.load for r in records] == pytest.approx([0.25, 0.5, 0.75, 1.0])  # no cut
+    assert solver.states == [None, K_S, None, None, None]
+    assert [r.stabilisation for r in records] == pytest.approx([0.025, 0, 0, 0])
+    assert held.stiffness is None and not stabiliser.on
+
+
+def test_elsewhere_a_step_is_held_only_once_cuts_are_exhausted():
+    """Past a ramp's first step a failed step is cut as without springs (a converged run stays
+    the same); only where the next cut would go under ``min_step`` is it held, as a last
+    resort, at the increment that failed, and the ramp then goes on."""
     held = Held()
     stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
     solver = HeldSolver(held, fails=lambda lam: 0.3 < lam <= 0.5)  # a near-mechanism there
-    _, records = ramp(
-        solver, 0.0, 1.0, first_step=0.25, min_step=0.01, growth=1.0, stabiliser=stabiliser
-    )
-    loads = [r.load for r in records]
-    assert loads == pytest.approx([0.25, 0.5, 0.75, 1.0])  # no cut: held instead
-    assert solver.states == [None, None, K_S, None, None]
-    assert [r.stabilisation for r in records] == pytest.approx([0, 0.025, 0, 0])
+    kwargs = dict(first_step=0.25, min_step=0.01, growth=1.0, stabiliser=stabiliser)
+    _, records = ramp(solver, 0.0, 1.0, **kwargs)
+    assert records[-1].load == pytest.approx(1.0)
+    assert records[1].cuts == 3 and records[1].load == pytest.approx(0.25 + 0.25 / 8)  # as before
+    stabilised = [r for r in records if r.stabilisation]
+    assert stabilised and all(0.3 < r.load <= 0.5 for r in stabilised)
+    assert all(r.stabilisation == pytest.approx(0.025) for r in stabilised)
+    first = records.index(stabilised[0])
+    assert records[first].load - records[first - 1].load == pytest.approx(0.015625)
     assert held.stiffness is None and not stabiliser.on
 
 

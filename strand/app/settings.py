@@ -106,7 +106,7 @@ class StepSettings(WithKinds):
     retry: bool = True  # retry a failed step once with the other predictor before halving
     predictor: bool = True  # start each solve from the secant predictor of the ramp's last step
     iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
-    stabilise: float = 1e4  # N/m per pair: contact springs after a failed attempt (0: off)
+    stabilise: float = 1e4  # N/m per pair: contact springs for a step that fails (Stabiliser)
     by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
 
     UNITS: ClassVar[dict[str, str]] = {

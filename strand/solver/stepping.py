@@ -165,10 +165,12 @@ class LoadStepper:
         settles: the ramp's first step is no guide to the next (e.g. a strand's first
             tension step, in which its contact pairs close): no predictor, and no error
             estimate, is taken from it.
-        stabiliser: a ``Stabiliser``: after a failed attempt (and its ``retry``), the step is
-            tried again, and cut, with the contact springs on, until it converges; they are
-            switched off when it is committed, and their energy fraction recorded
-            (``StepRecord.stabilisation``). None (the default): no stabilisation.
+        stabiliser: a ``Stabiliser``: the contact springs, switched on for a step that failed
+            (after its ``retry``) where it would otherwise be cut: in a settling ramp's first
+            step (where pairs close with no friction yet), else only once cuts are exhausted,
+            as a last resort; the step is then tried again at the same increment, and cut with
+            the springs on. They are switched off when it is committed, and their energy
+            fraction recorded (``StepRecord.stabilisation``). None (the default): none.
     """
 
     def __init__(
@@ -240,6 +242,7 @@ class LoadStepper:
                 w += (trial - current) / previous[0] * previous[1]
             result = self.solver.solve()
             lus += result.factorisations
+            settling = self.settles and resume is None and not records
             if result.converged:
                 h, dw = trial - current, w - start_w
                 error, proposal = self._estimate(h, dw, previous, cuts)
@@ -251,7 +254,6 @@ class LoadStepper:
                     rejections += 1
                     predict = self.extrapolate
                     continue
-                settling = self.settles and resume is None and not records
                 previous = None if settling else (h, dw)
                 stabilisation = self._release()
                 self.solver.commit()
@@ -292,7 +294,12 @@ class LoadStepper:
                     predict = not self.extrapolate  # the same increment, predictor switched
                     continue
                 predict = self.extrapolate
-                if self.stabiliser is not None and not self.stabiliser.on:
+                held = self.stabiliser is not None and self.stabiliser.on
+                if (
+                    self.stabiliser is not None
+                    and not held
+                    and (settling or step / 2 < self.min_step)
+                ):
                     self.stabiliser.switch(True)  # the same increment, held
                     continue
                 step /= 2

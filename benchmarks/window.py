@@ -101,12 +101,33 @@ def worktree(commit: str) -> Path:
     return path
 
 
+def _api() -> dict:
+    """What a variant's code offers the window, from its layout: today's sub-packages, or the
+    flat package of the commits before the re-cut (ef5ccec)."""
+    try:
+        from strand.app.build import build_problem, step_control
+        from strand.app.case import load_case
+        from strand.model.post import cell_results
+        from strand.model.programme import run_programme
+    except ImportError:  # the flat layout
+        from strand.build import build_problem, step_control
+        from strand.case import load_case
+        from strand.post import cell_results
+        from strand.programme import run_programme
+    return {
+        "build_problem": build_problem,
+        "step_control": step_control,
+        "load_case": load_case,
+        "cell_results": cell_results,
+        "run_programme": run_programme,
+    }
+
+
 def measures(problem) -> dict:
     """The results compared between variants, at a stage's end: midspan deflection and end
     displacement (m), every element's axial force (N, the geometry's order), and the normal
     force of every contact pair and same-layer pair (N, the geometry's order)."""
-    from strand.model.post import cell_results
-
+    cell_results = _api()["cell_results"]
     m = problem.model
     s = problem.setup.state()
     same = m.same_layer_history().get("force", np.zeros(0))
@@ -125,10 +146,9 @@ def run_variant(name: str, quick: bool) -> dict:
     from mpi4py import MPI
     from petsc4py import PETSc
 
-    from strand.app.build import build_problem, step_control
-    from strand.app.case import load_case
-    from strand.model.programme import run_programme
-
+    api = _api()
+    build_problem, step_control = api["build_problem"], api["step_control"]
+    load_case, run_programme = api["load_case"], api["run_programme"]
     comm = MPI.COMM_WORLD
     PETSc.Log.begin()
     variant = VARIANTS[name]

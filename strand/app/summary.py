@@ -63,8 +63,8 @@ def effort_line(result: RunResult) -> str:
         else ""
     )
     return (
-        f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in {cuts} "
-        f"failed attempts), {lus} LUs{stabilised}, {result.seconds:.0f} s ({per_iteration:.2f} s "
+        f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in failed "
+        f"attempts, {cuts} step cut{'s' * (cuts != 1)}), {lus} LUs{stabilised}, {result.seconds:.0f} s ({per_iteration:.2f} s "
         f"per iteration, set-up {result.setup_seconds:.0f} s); results in {result.folder}"
     )
 

@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 BENCHMARKS = ROOT / "benchmarks"
 SCRIPTS = sorted(p for p in BENCHMARKS.glob("*.py") if p.name != "harness.py")
 #: the scripts whose options an argparse parser reads
-WITH_PARSER = ["stick_bending.py", "wire_count.py", "freed_memory.py"]
+WITH_PARSER = ["stick_bending.py", "wire_count.py", "freed_memory.py", "stabilisation.py"]
 
 
 @pytest.fixture

@@ -190,7 +190,7 @@ class Recording:
             setup.state(),
             rec.failed_iterations,
             rec.factorisations,
-            rec.stabilisation,
+            stabilisation=rec.stabilisation,
         )
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14

@@ -91,7 +91,7 @@ class LoadSettings(WithKinds):
     UNITS: ClassVar[dict[str, str]] = {"tension": "N"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class StepSettings(WithKinds):
     tension: float = 1e3  # N
     growth: float = 1.5  # the next increment over this one after a step of at most 6 iterations
@@ -136,7 +136,7 @@ class OutputSettings:
     checkpoint: bool = True  # checkpoint.h5 (last converged state) and tensioned.h5
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FatigueSettings:
     outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
     sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES), "custom", "user"

@@ -7,7 +7,7 @@ the record, the problem, and the results computed from its state once, on demand
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
@@ -42,6 +42,7 @@ class RunStep:
     state: Any
     failed_iterations: int = 0
     factorisations: int = 0
+    _: KW_ONLY
     #: the contact stabilisation's energy over the strain energy (0: not stabilised;
     #: ``strand.solver.Stabiliser``)
     stabilisation: float = 0.0

@@ -11,7 +11,7 @@ following, e = ½ w'' Δλ (Δλ + Δλ_prev) + O(Δλ³) on a smooth path, henc
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -65,6 +65,7 @@ class StepRecord:
     rejections: int = 0
     #: LU factorisations of the step, failed attempts included (``NewtonResult.factorisations``)
     factorisations: int = 0
+    _: KW_ONLY
     #: the contact stabilisation's energy over the strain energy at the converged step
     #: (``Stabiliser.fraction``); 0: the step converged without it
     stabilisation: float = 0.0
@@ -269,7 +270,7 @@ class LoadStepper:
                     retries,
                     rejections,
                     lus,
-                    stabilisation,
+                    stabilisation=stabilisation,
                 )
                 current = trial
                 if proposal is not None:

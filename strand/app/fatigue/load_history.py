@@ -150,7 +150,7 @@ def _seconds(path: Path, column: str, unit: str) -> float:
     return SECONDS.get(unit, 1.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class HistorySpectrum:
     """A column's spectrum (``spectrum``: counts × ``scale``), the history's ``duration`` (s;
     None without a time column) with the time column's unit as given (``time_unit``, "": none,
@@ -249,15 +249,15 @@ def history_spectrum(
     elif scale is None:
         scale = 1.0
     return HistorySpectrum(
-        column,
-        spectrum,
-        float(scale),
-        duration,
-        tension_column,
-        data[tension_column] if tension_column else None,
-        period,
-        units[time_column] if time_column else "",
-        tuple(notes),
+        column=column,
+        spectrum=spectrum,
+        scale=float(scale),
+        duration=duration,
+        tension_column=tension_column,
+        tension=data[tension_column] if tension_column else None,
+        period=period,
+        time_unit=units[time_column] if time_column else "",
+        notes=tuple(notes),
     )
 
 

@@ -93,7 +93,7 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(float(a) for a in sys.argv[1:3]))

@@ -93,7 +93,7 @@ def main(steps: int = 10) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(int(a) for a in sys.argv[1:2]))

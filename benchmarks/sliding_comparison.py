@@ -106,7 +106,7 @@ def main(which: str = "helix", p_max: float | None = None, length: float | None 
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:4]])

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..model.parallel import root_open
+from ..beam.parallel import root_open
 from ..setups.base import columns, values
 from .step_records import SlipFractions, StepBending, StepContext
 
@@ -161,7 +161,7 @@ class FieldSeries:
     the first step of a run from the start."""
 
     def __init__(self, folder: Path, problem, vtx: bool = True, initial: bool = True):
-        from ..model.fields import FieldWriter, cell_function
+        from ..beam.fields import FieldWriter, cell_function
 
         mesh, g = problem.cmesh.mesh, problem.geometry
         ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]

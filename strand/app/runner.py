@@ -14,7 +14,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from ..model.parallel import is_root
+from ..beam.parallel import is_root
 from ..model.post import CellEvaluator, cell_results
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme

@@ -19,9 +19,9 @@ import numpy as np
 
 from forms import ReissnerBeam
 
+from ..beam.parallel import is_root, on_root, root_stream
 from ..model.checkpoint import restore
 from ..model.model import BeamFactory
-from ..model.parallel import is_root, on_root, root_stream
 from ..model.programme import LoadProgramme, Position
 from .build import (
     build_problem,

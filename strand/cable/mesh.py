@@ -105,10 +105,10 @@ def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD, stenci
     """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays). On several
     ranks it is cut in axial slabs, ghosted so that each row of ``stencils`` (input node indices,
     anchor first: contact pairs, end sections) is whole on the rank owning its anchor
-    (``strand.model.partition``)."""
+    (``strand.beam.partition``)."""
     partitioner = None
     if comm.size > 1:
-        from ..model.partition import slab_partitioner
+        from ..beam.partition import slab_partitioner
 
         partitioner = slab_partitioner(geometry.points[:, 2], geometry.cells, stencils)
     mesh = polyline_mesh(comm, geometry.points, geometry.cells, partitioner)

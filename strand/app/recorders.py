@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..beam.parallel import root_open
-from ..setups.base import columns, values
+from ..beam.records import columns, values
 from .step_records import SlipFractions, StepBending, StepContext
 
 __all__ = [

@@ -151,7 +151,7 @@ class SweepTable:
 
 def unit_of(record_type, name: str) -> str:
     """The unit of the field ``name`` of a set-up's record type, as column names write it
-    (``setups.base.quantity``: "m", "1_per_m"; "" for none)."""
+    (``strand.beam.records.quantity``: "m", "1_per_m"; "" for none)."""
     return next(f.metadata.get("unit", "") for f in fields(record_type) if f.name == name)
 
 

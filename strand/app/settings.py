@@ -46,7 +46,7 @@ KIND_SECTIONS = {"load": "load_settings", "steps": "step_settings"}
 
 def _kind_defaults(section: str) -> dict[str, Any]:
     """Every registered set-up kind's own settings of ``section`` at their defaults, by kind."""
-    from .kinds.registry import registered  # with the package: the built-in kinds registered
+    from .kinds import registered  # the package registers the built-in kinds
 
     return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in registered()}
 
@@ -336,7 +336,7 @@ def unit_of(section: str, key: str) -> str:
     kind's own); "" for a ratio, a count or a setting that is not a number."""
     classes = [SECTIONS[section]]
     if section in KIND_SECTIONS:
-        from .kinds.registry import registered
+        from .kinds import registered
 
         classes += [getattr(kind, KIND_SECTIONS[section]) for kind in registered()]
     for cls in classes:

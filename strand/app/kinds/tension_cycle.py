@@ -27,9 +27,9 @@ from ...model.post import fibre_model
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ...setups.tension_cycle import TensionCycleState, TensionCycleTest, TensionSection
 from ..errors import CaseError
+from ..kind_registry import lookup
 from ..settings import Case
 from .base import SetupKind, tension_stage
-from .registry import lookup
 
 __all__ = [
     "TensionCycle",

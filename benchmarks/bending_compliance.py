@@ -20,10 +20,10 @@ import time
 from harness import peak_mib, stamp
 
 from strand.analytical import StickSlipLaw
+from strand.analytical.fibre import bending_stiffness_bounds
 from strand.app.case import case_from_dict
 from strand.app.run import run_case
 from strand.cable.description import cardinal
-from strand.model.post import bending_stiffness_bounds
 
 #: variant: (output folder, [contact] settings)
 VARIANTS = {

@@ -26,8 +26,8 @@ from harness import stamp
 from strand.app.compare import difference_table, overlay_figure
 from strand.cable.description import Cable, cardinal
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
-from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
 from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions

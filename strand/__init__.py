@@ -128,9 +128,10 @@ _API = {
     "Stage": "strand.model.programme",
     "cycle_stages": "strand.model.programme",
     "run_programme": "strand.model.programme",
-    "section_resultants": "strand.model.post",
-    "fibre_model": "strand.model.post",
-    "bending_stiffness_bounds": "strand.model.post",
+    "section_resultants": "strand.model.cell_results",
+    # the analytical references a run is compared with
+    "fibre_model": "strand.analytical.fibre",
+    "bending_stiffness_bounds": "strand.analytical.fibre",
     # what any beam run needs: field output, distribution, MPI helpers
     "FieldWriter": "strand.beam.fields",
     "slab_partitioner": "strand.beam.partition",
@@ -163,6 +164,8 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: re-exported)
+    from .analytical.fibre import bending_stiffness_bounds as bending_stiffness_bounds
+    from .analytical.fibre import fibre_model as fibre_model
     from .beam.fields import FieldWriter as FieldWriter
     from .beam.parallel import abort_on_error as abort_on_error
     from .beam.parallel import is_root as is_root
@@ -215,11 +218,9 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .contact import resolve_normal as resolve_normal
     from .contact import sliding_terms as sliding_terms
     from .contact.element import ContactGroup as ContactGroup
+    from .model.cell_results import section_resultants as section_resultants
     from .model.contact_settings import ContactSettings as ContactSettings
     from .model.model import StrandModel as StrandModel
-    from .model.post import bending_stiffness_bounds as bending_stiffness_bounds
-    from .model.post import fibre_model as fibre_model
-    from .model.post import section_resultants as section_resultants
     from .model.problem import StrandProblem as StrandProblem
     from .model.programme import LoadProgramme as LoadProgramme
     from .model.programme import Stage as Stage

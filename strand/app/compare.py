@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.post import CellResults, sector_of
+from ..model.cell_results import CellResults, sector_of
 from .kinds import kind_of
 from .settings import Case
 

@@ -55,7 +55,7 @@ class TestSetup(ABC):
     @abstractmethod
     def moment_curvature(self, cells, residual):
         """The bending measures at the current state (a frozen dataclass), given the cell
-        results (``post.cell_results``) and the unconstrained residual (n_blocks, 6), whose
+        results (``cell_results.cell_results``) and the unconstrained residual (n_blocks, 6), whose
         values at supported dofs are the reactions."""
 
     @property

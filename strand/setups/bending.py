@@ -44,8 +44,8 @@ from dolfinx import fem
 
 from ..beam.records import quantity
 from ..contact.kinematics import rotation_matrix
+from ..model.cell_results import section_resultants
 from ..model.model import StrandModel
-from ..model.post import section_resultants
 from .base import TestSetup, pilot_links
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..beam.records import quantity
-from ..model.post import section_resultants
+from ..model.cell_results import section_resultants
 from .saddle import SaddleTest
 
 __all__ = ["TensionCycleTest", "TensionCycleState", "TensionSection"]

@@ -11,6 +11,7 @@ import numpy.typing as npt
 from dolfinx import fem
 from mpi4py import MPI
 
+from ..beam.partition import slab_partitioner
 from .geometry import StrandGeometry
 
 __all__ = [
@@ -108,8 +109,6 @@ def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD, stenci
     (``strand.beam.partition``)."""
     partitioner = None
     if comm.size > 1:
-        from ..beam.partition import slab_partitioner
-
         partitioner = slab_partitioner(geometry.points[:, 2], geometry.cells, stencils)
     mesh = polyline_mesh(comm, geometry.points, geometry.cells, partitioner)
     n_local = mesh.topology.index_map(1).size_local

@@ -76,7 +76,7 @@ def main(n_cells: int = 10_000) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(int(sys.argv[1]) if len(sys.argv) > 1 else 10_000)

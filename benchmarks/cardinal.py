@@ -71,7 +71,7 @@ def main(case_file: str | None = None) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*sys.argv[1:2])

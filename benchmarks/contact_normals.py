@@ -90,7 +90,7 @@ def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False)
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]

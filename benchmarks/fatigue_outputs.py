@@ -24,8 +24,8 @@ from strand.app.recorders import AxialForceTable, FieldSeries
 from strand.app.step_records import RunStep, StepContext
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import CellEvaluator, cell_results
 from strand.model.contact_settings import ContactSettings
-from strand.model.post import CellEvaluator, cell_results
 from strand.model.problem import StrandProblem
 from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
@@ -93,7 +93,7 @@ def main(steps: int = 10) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(int(a) for a in sys.argv[1:2]))

@@ -77,7 +77,7 @@ def main(lengths: list[float], extra: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]

@@ -76,7 +76,7 @@ def main(normal: str = "director", length: float = 1.0) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(sys.argv[1:2] or ["director"]), *[float(a) for a in sys.argv[2:3]])

@@ -47,7 +47,7 @@ def variants(quick: bool) -> list[tuple[str, int, list[str]]]:
 def worker(folder: str, settings: list[str]) -> None:
     """One run (under mpirun for several ranks); rank 0 writes ``timings.json``."""
     from strand.app.case import load_case
-    from strand.model.parallel import abort_on_error
+    from strand.beam.parallel import abort_on_error
 
     abort_on_error()  # an error on one rank ends both (else the other waits for ever)
     from strand.app.run import run_case

@@ -26,8 +26,8 @@ from harness import stamp
 from strand.app.compare import difference_table, overlay_figure
 from strand.cable.description import Cable, cardinal
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
-from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
 from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions
@@ -106,7 +106,7 @@ def main(which: str = "helix", p_max: float | None = None, length: float | None 
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:4]])

@@ -190,7 +190,7 @@ def compare(names: list[str], reference: str) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     if "--one" not in sys.argv:
         serial_only("this benchmark (it launches its 2-rank variant itself)")

@@ -27,11 +27,11 @@ from pathlib import Path
 import numpy as np
 from harness import stamp, table
 
+from strand.analytical.fibre import fibre_model
 from strand.app.case import case_from_dict
 from strand.app.case_toml import cable_table
 from strand.app.run import run_case
 from strand.cable.description import cardinal
-from strand.model.post import fibre_model
 
 
 def ring_case(length: float, tension: float, k: float) -> dict:

@@ -25,8 +25,8 @@ from harness import stamp
 
 from strand.app.build import build_problem
 from strand.app.case import load_case
-from strand.model.parallel import serial_only
-from strand.model.post import cell_results
+from strand.beam.parallel import serial_only
+from strand.model.cell_results import cell_results
 from strand.model.programme import run_programme
 
 CASE = ["mesh.length=0.3", "load.cycle=[1.0]"]

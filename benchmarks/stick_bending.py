@@ -28,10 +28,11 @@ import numpy as np
 from harness import stamp, table
 
 from strand.analytical import StickSlipLaw, stick_bending_estimate
+from strand.analytical.fibre import bending_stiffness_bounds
 from strand.cable.description import Cable, cardinal
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
-from strand.model.post import bending_stiffness_bounds, cell_results
 from strand.model.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions

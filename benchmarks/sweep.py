@@ -66,7 +66,7 @@ def main(length: float = 0.25, n: int = 10) -> None:
 
 
 if __name__ == "__main__":
-    from strand.model.parallel import serial_only
+    from strand.beam.parallel import serial_only
 
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
     args = sys.argv[1:]

@@ -107,7 +107,7 @@ def _api() -> dict:
     try:
         from strand.app.build import build_problem, step_control
         from strand.app.case import load_case
-        from strand.model.post import cell_results
+        from strand.model.cell_results import cell_results
         from strand.model.programme import run_programme
     except ImportError:  # the flat layout
         from strand.build import build_problem, step_control

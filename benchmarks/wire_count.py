@@ -177,13 +177,13 @@ def worker(wires: int, length: float, folder: Path, settings: list[str]) -> None
     from mpi4py import MPI
     from petsc4py import PETSc
 
-    from strand.model.parallel import abort_on_error
+    from strand.beam.parallel import abort_on_error
 
     abort_on_error()  # an error on one rank ends both (else the other waits for ever)
 
     from strand.app.build import build_problem, results_folder
     from strand.app.runner import run_programme_with_outputs
-    from strand.model.parallel import root_stream
+    from strand.beam.parallel import root_stream
 
     comm = MPI.COMM_WORLD
     PETSc.Log.begin()
@@ -529,7 +529,7 @@ if __name__ == "__main__":
     elif sys.argv[1:2] == ["--probe"]:
         analysis_probe(int(sys.argv[2]), float(sys.argv[3]), Path(sys.argv[4]), sys.argv[5:])
     else:
-        from strand.model.parallel import serial_only
+        from strand.beam.parallel import serial_only
 
         serial_only("this benchmark (it launches its 2-rank runs itself)")
         parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])

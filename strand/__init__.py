@@ -4,7 +4,8 @@ Units are SI throughout: m, N, Pa, rad (contact stiffnesses in N/m).
 
 Two layers. The library, ``strand`` outside ``strand.app``, is what a FEniCSx script imports:
 contact between beams (``strand.contact``), the nonlinear problem and load stepping
-(``strand.solver``), cables, their geometry and meshes (``strand.cable``), the model of a strand
+(``strand.solver``), what any beam run needs (MPI helpers, distribution, field output:
+``strand.beam``), cables, their geometry and meshes (``strand.cable``), the model of a strand
 (``strand.model``) and its test set-ups (``strand.setups``), the analytical references
 (``strand.analytical``) and the fatigue physics (``strand.fatigue``); the beam forms are the
 package ``forms``. The application, ``strand.app``, runs a case file into a folder of results
@@ -119,7 +120,7 @@ _API = {
     "offscreen_plotter": "strand.cable.pictures",
     "tubes": "strand.cable.pictures",
     "strand_picture": "strand.cable.pictures",
-    # the model of a strand, its load programmes, results and distribution
+    # the model of a strand, its load programmes and results
     "StrandModel": "strand.model.model",
     "ContactSettings": "strand.model.contact_settings",
     "StrandProblem": "strand.model.problem",
@@ -127,14 +128,16 @@ _API = {
     "Stage": "strand.model.programme",
     "cycle_stages": "strand.model.programme",
     "run_programme": "strand.model.programme",
-    "section_resultants": "strand.model.post",
-    "fibre_model": "strand.model.post",
-    "bending_stiffness_bounds": "strand.model.post",
-    "FieldWriter": "strand.model.fields",
-    "slab_partitioner": "strand.model.partition",
-    "is_root": "strand.model.parallel",
-    "serial_only": "strand.model.parallel",
-    "abort_on_error": "strand.model.parallel",
+    "section_resultants": "strand.model.cell_results",
+    # the analytical references a run is compared with
+    "fibre_model": "strand.analytical.fibre",
+    "bending_stiffness_bounds": "strand.analytical.fibre",
+    # what any beam run needs: field output, distribution, MPI helpers
+    "FieldWriter": "strand.beam.fields",
+    "slab_partitioner": "strand.beam.partition",
+    "is_root": "strand.beam.parallel",
+    "serial_only": "strand.beam.parallel",
+    "abort_on_error": "strand.beam.parallel",
     # test set-ups
     "TestSetup": "strand.setups",
     "PenaltyLinks": "strand.setups",
@@ -161,6 +164,13 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: re-exported)
+    from .analytical.fibre import bending_stiffness_bounds as bending_stiffness_bounds
+    from .analytical.fibre import fibre_model as fibre_model
+    from .beam.fields import FieldWriter as FieldWriter
+    from .beam.parallel import abort_on_error as abort_on_error
+    from .beam.parallel import is_root as is_root
+    from .beam.parallel import serial_only as serial_only
+    from .beam.partition import slab_partitioner as slab_partitioner
     from .cable.description import Cable as Cable
     from .cable.description import CableError as CableError
     from .cable.description import Layer as Layer
@@ -208,16 +218,9 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .contact import resolve_normal as resolve_normal
     from .contact import sliding_terms as sliding_terms
     from .contact.element import ContactGroup as ContactGroup
+    from .model.cell_results import section_resultants as section_resultants
     from .model.contact_settings import ContactSettings as ContactSettings
-    from .model.fields import FieldWriter as FieldWriter
     from .model.model import StrandModel as StrandModel
-    from .model.parallel import abort_on_error as abort_on_error
-    from .model.parallel import is_root as is_root
-    from .model.parallel import serial_only as serial_only
-    from .model.partition import slab_partitioner as slab_partitioner
-    from .model.post import bending_stiffness_bounds as bending_stiffness_bounds
-    from .model.post import fibre_model as fibre_model
-    from .model.post import section_resultants as section_resultants
     from .model.problem import StrandProblem as StrandProblem
     from .model.programme import LoadProgramme as LoadProgramme
     from .model.programme import Stage as Stage

@@ -27,7 +27,7 @@ RECORDS_TO_CUT = {
     "strand/model/checkpoint.py:Checkpoint": 11,
     "strand/model/contact_settings.py:ContactSettings": 11,
     "strand/model/pair_results.py:PairResults": 9,
-    "strand/model/post.py:CellResults": 11,
+    "strand/model/cell_results.py:CellResults": 11,
     "strand/model/programme.py:Stage": 9,
     "strand/model/reactions.py:EndReactions": 8,
     "strand/model/same_layer.py:SameLayerPairs": 11,

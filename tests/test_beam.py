@@ -9,6 +9,7 @@ from scipy.spatial.transform import Rotation
 
 from beam_cases import NU, D, E, cantilever, section_stiffness
 from forms import CircularSection, ReissnerBeam
+from strand.beam.fields import section_force_values
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
 from strand.cable.mesh import (
@@ -18,7 +19,6 @@ from strand.cable.mesh import (
     polyline_mesh,
     straight_beam_mesh,
 )
-from strand.model.fields import section_force_values
 from strand.model.model import layer_section
 from strand.solver import LoadStepper
 

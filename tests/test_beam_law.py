@@ -30,11 +30,12 @@ import pytest
 from dolfinx import fem
 
 from forms import CircularSection, ReissnerBeam
+from strand.analytical.fibre import bending_stiffness_bounds
 from strand.app.case import case_from_dict
 from strand.app.run import run_case
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
-from strand.model.post import bending_stiffness_bounds, cell_results
 from strand.model.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepper, NewtonOptions

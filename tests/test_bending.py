@@ -19,13 +19,15 @@ from strand.analytical import (
     masing,
     stick_bending_estimate,
 )
+from strand.analytical.fibre import bending_stiffness_bounds
 from strand.app.case import CaseError, case_from_dict
 from strand.app.kinds.saddle_report import saddle_beam_reference
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
+from strand.model.layer_fields import zone_layer_fields
 from strand.model.model import layer_section
-from strand.model.post import bending_stiffness_bounds, cell_results, zone_layer_fields
 from strand.model.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepper, NewtonOptions
@@ -163,7 +165,7 @@ def test_full_stick_with_crossings_is_limited_by_the_beams_not_the_contacts():
 def full_stick_fields(cable):
     """The first step (κ = 0.002 1/m) of ``cable`` in full stick, crossings only (penalty,
     g_lim = 0.05 µm): its zone record, its stick–slip law and the zone's wire fields per layer
-    (``post.zone_layer_fields``); asserts that no pair slips."""
+    (``layer_fields.zone_layer_fields``); asserts that no pair slips."""
     base = []
     contact = ContactSettings(same_layer="off", compliance="penalty", g_lim=5e-8)
     zb, problem = next(bent(cable, contact, [0.002], tensioned=base))
@@ -180,7 +182,7 @@ def full_stick_fields(cable):
 
 def test_in_full_stick_the_wires_roll_on_their_ties_as_the_estimate_says():
     """The 1+6+12 of the test above in full stick (M/κ 0.547 EI_max at κ = 0.002 1/m): the zone's
-    wire fields fitted per layer against φ (``post.zone_layer_fields``) beside the smeared
+    wire fields fitted per layer against φ (``layer_fields.zone_layer_fields``) beside the smeared
     estimate of wires rolling on stuck ties (``stick_bending_estimate``: M/κ 0.60 EI_max).
     Measured, layers 1 / 2: axial force share of plane sections 0.90 / 0.37 (estimate 1.00 /
     0.42), spin −0.104 / −0.022 rad m (estimate, magnitudes, 0.115 / 0.0008), torque 2.80 /

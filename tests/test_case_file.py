@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 from strand import __version__
+from strand.analytical.fibre import fibre_model
 from strand.app.case import case_from_dict, load_case
 from strand.app.case_toml import case_toml
 from strand.app.cli import main
 from strand.cable.description import judge120
-from strand.model.post import fibre_model
 from strand_cases import SEVEN_WIRE, one_line_error
 
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")

@@ -1,4 +1,4 @@
-"""The wires' spin and torque (``strand.model.post.section_spin``, ``section_torque``,
+"""The wires' spin and torque (``strand.model.cell_results.section_spin``, ``section_torque``,
 ``cell_results``) against closed forms, the per-layer fits against φ (``layer_fields``), and the
 uniform bending summary's table of them beside the rolling estimate."""
 
@@ -12,8 +12,9 @@ from beam_cases import cantilever, section_stiffness
 from strand.app.case import load_case
 from strand.app.history import read_history
 from strand.app.run import run_case
+from strand.model.cell_results import cell_results, section_spin, section_torque
+from strand.model.layer_fields import harmonic_fit, layer_fields
 from strand.model.model import StrandModel
-from strand.model.post import cell_results, harmonic_fit, layer_fields, section_spin, section_torque
 from strand_cases import SEVEN_WIRE, seven_wire
 
 

@@ -1,13 +1,20 @@
-"""The two layers of the code, read from the source alone (``ast``; nothing is imported): the
-library (``strand`` outside ``strand.app``, and ``forms``) never imports the application
-(``strand.app``), no module imports itself through others (no import circle, counting the imports
-inside functions and under ``TYPE_CHECKING``), and ``strand/__init__.py`` names each name of the
-public API once, with the module that defines it.
+"""The two layers of the code and the order of its packages, read from the source alone (``ast``;
+nothing is imported): the library (``strand`` outside ``strand.app``, and ``forms``) never imports
+the application (``strand.app``), each package imports only from packages at its level of
+``ORDER`` or below, no module imports itself through others (no import circle, counting the
+imports inside functions and under ``TYPE_CHECKING``), and ``strand/__init__.py`` names each name
+of the public API once, with the module that defines it.
 
 An import is an edge to the module that defines what it names: ``import a.b.c`` and ``from a.b
 import c`` go to the submodule ``a.b.c`` where there is one, else to the package ``a.b``
-(its ``__init__``); relative imports are resolved first. A package's ``__init__`` importing its
+(its ``__init__``); relative imports are resolved first. It is also an edge to the ``__init__`` of
+every package on the way (``a``, ``a.b``), as Python runs them first, except the importer's own
+packages, which Python has started before the importer. A package's ``__init__`` importing its
 own submodules is an edge like any other: a submodule importing its package back is a circle.
+
+An import inside a function counts as one at the top: it runs when the function is called, and
+which ``__init__`` it runs then depends on what the process happened to import before, an order
+nothing checks; moving an import into a function hides a circle from Python, not from the design.
 """
 
 from __future__ import annotations
@@ -21,6 +28,22 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("strand", "forms")
 APP = "strand.app"
+
+#: the packages from the bottom up: a package imports only from its own level and those below.
+#: ``strand`` is the package's ``__init__`` alone, the public API, which names the library's
+#: modules; ``forms`` is the top-level package of the beam forms; every other name is a package
+#: of ``strand``
+ORDER = (
+    ("forms", "contact", "solver"),  # the beam forms, contact between beams, the solver
+    ("beam",),  # what any beam run needs: MPI helpers, distribution, field output, records
+    ("cable",),  # cables, their geometry and meshes
+    ("analytical",),  # the analytical references
+    ("fatigue",),  # fatigue physics on arrays
+    ("model",),  # the strand model: beams + strand contact
+    ("setups",),  # the test set-ups on a model
+    ("strand",),  # the public API
+    ("app",),  # the application
+)
 
 
 def modules(root: Path = ROOT, packages: Iterable[str] = PACKAGES) -> dict[str, Path]:
@@ -79,7 +102,17 @@ def imports_of(name: str, tree: ast.AST, known: Mapping[str, Path]) -> set[str]:
             module = _defining(target, known)
             if module is not None and module != name:
                 out.add(module)
+                out |= _packages_run_first(module, name, known)
     return out
+
+
+def _packages_run_first(module: str, importer: str, known: Mapping[str, Path]) -> set[str]:
+    """The packages whose ``__init__`` Python runs before ``module`` when ``importer`` imports
+    it: every package on ``module``'s path but those ``importer`` sits in (started already)."""
+    started = {".".join(importer.split(".")[:i]) for i in range(1, importer.count(".") + 2)}
+    parts = module.split(".")
+    prefixes = (".".join(parts[:i]) for i in range(1, len(parts)))
+    return {p for p in prefixes if p in known and _is_package(p, known) and p not in started}
 
 
 def import_graph(root: Path = ROOT, packages: Iterable[str] = PACKAGES) -> dict[str, set[str]]:
@@ -134,6 +167,39 @@ def layer_violations(graph: Mapping[str, Iterable[str]]) -> list[str]:
     ]
 
 
+def package_of(module: str) -> str:
+    """The package of ``ORDER`` that ``module`` belongs to: ``strand.cable.mesh`` → ``cable``,
+    ``strand`` → ``strand`` (its ``__init__``), ``forms.reissner`` → ``forms``."""
+    parts = module.split(".")
+    return parts[1] if parts[0] == "strand" and len(parts) > 1 else parts[0]
+
+
+def package_graph(graph: Mapping[str, Iterable[str]]) -> dict[str, set[str]]:
+    """Package → the other packages its modules import."""
+    out: dict[str, set[str]] = {}
+    for a, targets in graph.items():
+        here = package_of(a)
+        out.setdefault(here, set()).update(package_of(b) for b in targets if package_of(b) != here)
+    return out
+
+
+def order_violations(
+    graph: Mapping[str, Iterable[str]], order: Iterable[Iterable[str]] = ORDER
+) -> list[str]:
+    """Each import of a module from a package above the importer's in ``order``, and each
+    package without a place in it."""
+    level = {package: i for i, packages in enumerate(order) for package in packages}
+    unplaced = sorted({package_of(m) for m in graph} - set(level))
+    return [f"{p}: not in the package order" for p in unplaced] + [
+        f"{a} → {b} ({package_of(a)} below {package_of(b)})"
+        for a, targets in sorted(graph.items())
+        for b in sorted(targets)
+        if package_of(a) in level
+        and package_of(b) in level
+        and level[package_of(b)] > level[package_of(a)]
+    ]
+
+
 @pytest.fixture(scope="module")
 def graph():
     return import_graph()
@@ -145,11 +211,24 @@ def test_the_graph_sees_the_modules(graph):
     assert {"strand", "strand.app", "strand.app.cli", "forms", "forms.reissner"} <= set(graph)
     assert "strand.app.case" in graph["strand.app.cli"]  # an import inside a function
     assert "forms.rotations" in graph["forms.reissner"]  # a relative import
+    # ``from ..contact.hertz import``: Python runs strand/contact/__init__.py first
+    assert {"strand.contact", "strand.contact.hertz"} <= graph["strand.model.compliances"]
 
 
 def test_no_import_circle(graph):
     cycle = find_cycle(graph)
     assert cycle is None, "import circle: " + " → ".join(cycle)
+
+
+def test_the_packages_import_in_order(graph):
+    bad = order_violations(graph)
+    assert not bad, "imports against the package order:\n" + "\n".join(bad)
+
+
+def test_no_circle_between_packages(graph):
+    """Packages of one level may import each other's modules, but not both ways."""
+    cycle = find_cycle(package_graph(graph))
+    assert cycle is None, "packages that import each other: " + " → ".join(cycle)
 
 
 def test_the_library_never_imports_the_application(graph):
@@ -172,14 +251,97 @@ def test_the_checks_fail_where_they_should(tmp_path):
     (pkg / "app" / "__init__.py").write_text("from . import b\n")
     (pkg / "app" / "b.py").write_text("from strand import app\nimport strand.a\n")
     g = import_graph(tmp_path, ["strand"])
-    assert g["strand.a"] == {"strand.app.b"}
+    assert g["strand.a"] == {"strand.app", "strand.app.b"}  # the package's __init__ runs first
     assert g["strand.app.b"] == {"strand.app", "strand.a"}
     cycle = find_cycle(g)
     assert cycle is not None and cycle[0] == cycle[-1]
-    assert set(cycle) in ({"strand.app", "strand.app.b"}, {"strand.a", "strand.app.b"})
-    assert layer_violations(g) == ["strand.a → strand.app.b"]
+    assert set(cycle) in (
+        {"strand.app", "strand.app.b"},
+        {"strand.a", "strand.app.b"},
+        {"strand.a", "strand.app", "strand.app.b"},
+    )
+    assert layer_violations(g) == ["strand.a → strand.app", "strand.a → strand.app.b"]
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": set()}) is None
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+
+
+def _write(root: Path, files: Mapping[str, str]) -> None:
+    for name, text in files.items():
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+
+
+def test_a_circle_closed_by_a_package_init_is_found(tmp_path):
+    """The settings import the kinds' registry inside a function; Python runs the package
+    ``kinds/__init__.py`` first, which imports ``kinds.base``, which imports the settings: a
+    circle that an edge to the registry module alone would miss."""
+    _write(
+        tmp_path,
+        {
+            "strand/__init__.py": "",
+            "strand/app/__init__.py": "",
+            "strand/app/settings.py": "def f():\n    from .kinds.registry import registered\n",
+            "strand/app/kinds/__init__.py": "from .base import Kind\n",
+            "strand/app/kinds/base.py": "from ..settings import f\nfrom .registry import add\n",
+            "strand/app/kinds/registry.py": "",
+        },
+    )
+    g = import_graph(tmp_path, ["strand"])
+    assert g["strand.app.settings"] == {"strand.app.kinds", "strand.app.kinds.registry"}
+    # a module's own packages have started before it: no edge back to them
+    assert g["strand.app.kinds.base"] == {"strand.app.settings", "strand.app.kinds.registry"}
+    assert find_cycle(g) == [
+        "strand.app.kinds",
+        "strand.app.kinds.base",
+        "strand.app.settings",
+        "strand.app.kinds",
+    ]
+    # without the package's __init__ importing base there is no circle
+    (tmp_path / "strand/app/kinds/__init__.py").write_text("")
+    assert find_cycle(import_graph(tmp_path, ["strand"])) is None
+
+
+def test_the_order_check_fails_where_it_should(tmp_path):
+    """A package importing one above it (at the top of a module, inside a function, from a
+    package ``__init__``, or through a package's ``__init__``) and a package without a place."""
+    _write(
+        tmp_path,
+        {
+            "strand/__init__.py": "",
+            "strand/cable/__init__.py": "from ..model import partition\n",
+            "strand/cable/mesh.py": "def m():\n    from strand.model.partition import p\n",
+            "strand/cable/geometry.py": "from ..setups.base import q\n",
+            "strand/model/__init__.py": "",
+            "strand/model/partition.py": "from ..cable import mesh\n",
+            "strand/setups/__init__.py": "from .saddle import S\n",
+            "strand/setups/base.py": "",
+            "strand/setups/saddle.py": "from ..model import partition\n",
+            "strand/extra/__init__.py": "",
+        },
+    )
+    g = import_graph(tmp_path, ["strand"])
+    order = (("cable",), ("model",), ("setups",), ("strand",))
+    assert order_violations(g, order) == [
+        "extra: not in the package order",
+        "strand.cable → strand.model (cable below model)",
+        "strand.cable → strand.model.partition (cable below model)",
+        "strand.cable.geometry → strand.setups (cable below setups)",
+        "strand.cable.geometry → strand.setups.base (cable below setups)",
+        "strand.cable.mesh → strand.model (cable below model)",
+        "strand.cable.mesh → strand.model.partition (cable below model)",
+    ]
+    assert order_violations(g, (("cable", "model"), ("setups",), ("extra", "strand"))) == [
+        "strand.cable.geometry → strand.setups (cable below setups)",
+        "strand.cable.geometry → strand.setups.base (cable below setups)",
+    ]
+    assert find_cycle(package_graph(g)) == ["cable", "model", "cable"]
+    assert order_violations(g, (("strand", "extra"), ("setups",), ("model",), ("cable",))) == [
+        "strand.model.partition → strand.cable (model below cable)",
+        "strand.model.partition → strand.cable.mesh (model below cable)",
+        "strand.setups.saddle → strand.model (setups below model)",
+        "strand.setups.saddle → strand.model.partition (setups below model)",
+    ]
 
 
 def _api_table() -> tuple[dict[str, str], list[str], dict[str, str]]:

@@ -14,10 +14,10 @@ from strand.app.case import load_case
 from strand.app.run import run_case
 from strand.app.summary import contact_force_line
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
 from strand.model.layer_pressure import in_middle_half, layer_pressure, layer_wire_forces
 from strand.model.pair_results import PairResults
-from strand.model.post import cell_results
 from strand.model.problem import StrandProblem
 from strand.setups.saddle import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions

@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 from strand.analytical.costello import costello_stiffness
+from strand.analytical.fibre import fibre_model
 from strand.app.case import load_case
 from strand.app.cli import main
 from strand.cable.description import CableError, cable_from_dict, judge120
-from strand.model.post import fibre_model
 
 CASE = Path(__file__).parents[1] / "cases" / "mooring_judge120.toml"
 

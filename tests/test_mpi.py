@@ -16,11 +16,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from strand.beam.partition import DistributionError, owned_rows, slab_destinations
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
 from strand.model.contact_settings import ContactSettings
 from strand.model.model import strand_stencils
-from strand.model.partition import DistributionError, owned_rows, slab_destinations
 from strand_cases import MPIRUN, SEVEN_WIRE, needs_mpirun
 
 #: relative agreement (to each column's largest value) required of a distributed run
@@ -414,7 +414,7 @@ def test_an_error_on_one_rank_ends_every_rank(tmp_path):
     its next collective call for ever."""
     script = tmp_path / "fails_on_root.py"
     script.write_text(
-        "import strand\nfrom mpi4py import MPI\nfrom strand.model.parallel import abort_on_error\n"
+        "import strand\nfrom mpi4py import MPI\nfrom strand.beam.parallel import abort_on_error\n"
         "abort_on_error()\n"
         "if MPI.COMM_WORLD.rank == 0:\n    raise KeyError('only on rank 0')\n"
         "MPI.COMM_WORLD.barrier()\n"

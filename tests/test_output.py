@@ -8,7 +8,7 @@ import pytest
 from dolfinx import fem
 
 from beam_cases import cantilever
-from strand.model.fields import FieldWriter, cell_function
+from strand.beam.fields import FieldWriter, cell_function
 
 
 def write_series(tmp_path):

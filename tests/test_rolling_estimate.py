@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from strand.analytical import contact_patch, stick_bending_estimate
+from strand.analytical.fibre import bending_stiffness_bounds
 from strand.cable.description import Cable, Wire, cardinal
-from strand.model.post import bending_stiffness_bounds
 
 
 def _reduced(layers: int) -> Cable:

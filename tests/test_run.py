@@ -8,12 +8,12 @@ import tomllib
 import numpy as np
 import pytest
 
+from strand.analytical.fibre import bending_stiffness_bounds, fibre_model
 from strand.app.case import CaseError, load_case
 from strand.app.cli import main
 from strand.cable.description import cardinal
 from strand.contact.element import ContactGroup
 from strand.contact.normal_laws import PenaltyLaw
-from strand.model.post import bending_stiffness_bounds, fibre_model
 from strand_cases import SEVEN_WIRE
 
 
@@ -127,7 +127,7 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
     compliance 6 %."""
     from strand.app.case import case_from_dict
     from strand.cable.geometry import build_geometry
-    from strand.model.post import cell_results
+    from strand.model.cell_results import cell_results
     from strand.model.problem import StrandProblem
     from strand.setups import SaddleTest
     from strand.solver import LoadStepper, NewtonOptions
@@ -176,7 +176,7 @@ def test_small_sliding_check_against_its_closed_form():
     """Crossing nodes moved round the strand by s: gap drift s²/(2R) (R the outer layer's helix
     radius); moved along the axis, or all together: none; the warning names the interface."""
     from strand.cable.geometry import build_geometry
-    from strand.model.post import sliding_check
+    from strand.model.sliding_check import sliding_check
 
     g = build_geometry(cardinal(), 0.1, 4e-3)
     p = g.pairs

@@ -18,11 +18,11 @@ import numpy as np
 import pytest
 
 from strand.analytical import TensionedBeam
+from strand.analytical.fibre import bending_stiffness_bounds
 from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
 from strand.app.kinds.saddle import CONTROL_TOLERANCE
 from strand.app.run import build_problem, run_programme_with_outputs
-from strand.model.post import bending_stiffness_bounds
 from strand.setups.saddle import beam_compliance
 from strand.solver import LoadStepper, NewtonResult
 from strand.solver.displacement_control import DisplacementControl

@@ -12,12 +12,13 @@ from functools import partial
 import numpy as np
 import pytest
 
+from strand.analytical.fibre import fibre_model
 from strand.app import kinds
 from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
 from strand.app.kinds import NoSettings, SetupKind
-from strand.model.post import fibre_model, section_resultants
-from strand.setups.base import quantity
+from strand.beam.records import quantity
+from strand.model.cell_results import section_resultants
 from strand.setups.saddle import SaddleTest
 from strand_cases import SEVEN_WIRE
 

@@ -12,8 +12,8 @@ import pytest
 from strand.analytical import costello_stiffness
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
+from strand.model.cell_results import cell_results, section_resultants
 from strand.model.contact_settings import ContactSettings
-from strand.model.post import cell_results, section_resultants
 from strand.model.problem import StrandProblem
 from strand.setups import SaddleTest
 from strand.solver import LoadStepper, NewtonOptions

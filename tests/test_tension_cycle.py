@@ -13,11 +13,11 @@ import re
 import numpy as np
 import pytest
 
+from strand.analytical.fibre import fibre_model
 from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
 from strand.app.fatigue.tension_check import strand_tension
 from strand.app.history import read_history
-from strand.model.post import fibre_model
 from strand_cases import SEVEN_WIRE
 
 MEAN, SWING = 10e3, 2e3  # N

@@ -88,7 +88,7 @@ def settings_reference() -> str:
 
 
 def _record_rows(record_type) -> list[str]:
-    from strand.setups.base import columns
+    from strand.beam.records import columns
 
     rows = []
     for name, f in zip(columns(record_type), fields(record_type), strict=True):

@@ -6,11 +6,14 @@
   offers against rolling and drilling;
 * ``beam``: the strand as one tensioned beam (midspan load, Poffenberger–Swart);
 * ``costello``: Costello's axial–torsional stiffness of a straight strand, and its torque
-  under tension with the ends held against rotation.
+  under tension with the ends held against rotation;
+* ``fibre``: the fibre model of a strand under tension, and the bounds of its bending
+  stiffness.
 """
 
 from .beam import POFFENBERGER_SWART_DISTANCE, TensionedBeam, clamped_deflection, poffenberger_swart
 from .costello import costello_stiffness, held_end_torque
+from .fibre import bending_stiffness_bounds, fibre_model
 from .rolling import ContactPatch, StickEstimate, contact_patch, stick_bending_estimate
 from .stick_slip import EI_MIN_VARIANTS, StickSlipLaw, ei_min, loop_area, masing
 
@@ -26,6 +29,8 @@ __all__ = [
     "poffenberger_swart",
     "costello_stiffness",
     "held_end_torque",
+    "fibre_model",
+    "bending_stiffness_bounds",
     "StickEstimate",
     "stick_bending_estimate",
     "ContactPatch",

@@ -26,7 +26,7 @@ over (A, C, Θ) subject to the ties gives E*, and
 
     EI_stick = EI_min + 2 E*/κ²,
 
-with EI_min = Σ n E I (the EPRI variant, as ``strand.model.post.bending_stiffness_bounds``), so that
+with EI_min = Σ n E I (the EPRI variant, as ``strand.analytical.fibre.bending_stiffness_bounds``), so that
 holding every spin gives EI_max exactly. A rotational stiffness per crossing (``k_roll`` on the
 relative rotation about in-plane axes, ``k_drill`` about the normal) adds its energy at
 N = n_i n_j (1/p_i + 1/p_j) crossings per metre. The estimate is first order and smeared (no

@@ -8,10 +8,10 @@ from pathlib import Path
 
 from forms import ReissnerBeam
 
+from ..beam.parallel import on_root
 from ..cable.geometry import build_geometry
 from ..model.checkpoint import CheckpointError, restore
 from ..model.model import BeamFactory
-from ..model.parallel import on_root
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme
 from ..solver import ErrorControl, NewtonOptions, keep_freed_memory

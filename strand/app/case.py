@@ -341,7 +341,8 @@ def _cable(spec, base: Path | None, source: str) -> Cable:
 def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -> Case:
     """The case of ``data`` (a case file's tables; relative cable files from ``base``), every
     setting checked (``CaseError`` naming ``source`` and the setting)."""
-    from .checks import checked_case  # here: the set-up kinds load when a case is read
+    from . import kinds  # noqa: F401  (here: the set-up kinds register when a case is read)
+    from .checks import checked_case
 
     allowed = ["cable", *SECTIONS]
     unknown = sorted(set(data) - set(allowed))

@@ -88,8 +88,8 @@ def _facing_table(g) -> list[str]:
 
 
 def _mesh(args) -> int:
+    from ..beam.parallel import is_root, on_root
     from ..cable.geometry import build_geometry
-    from ..model.parallel import is_root, on_root
     from .case import load_case
     from .folder import writable_folder
 
@@ -221,7 +221,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv: list[str] | None = None) -> int:
-    from ..model.parallel import abort_on_error
+    from ..beam.parallel import abort_on_error
 
     abort_on_error()  # an error on one rank of a distributed run ends them all
     parser = argparse.ArgumentParser(
@@ -346,7 +346,7 @@ def main(argv: list[str] | None = None) -> int:
             return _compare(args, compare)
         return _run(args, run)
     except (CableError, CaseError, FolderError, CheckpointError, HistoryError) as e:
-        from ..model.parallel import is_root
+        from ..beam.parallel import is_root
 
         if is_root():  # one line, not one per rank
             print(f"strand: error: {e}", file=sys.stderr)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.post import CellResults, sector_of
+from ..model.cell_results import CellResults, sector_of
 from .kinds import kind_of
 from .settings import Case
 
@@ -115,7 +115,7 @@ def compare_case(
     also written to ``comparison.txt`` there. Both folders are checked before either run
     (``folder.check_results_folder``; ``overwrite`` replaces an earlier comparison). Both
     run without same-layer contact, which large sliding does not have."""
-    from ..model.parallel import is_root, on_root, root_stream
+    from ..beam.parallel import is_root, on_root, root_stream
     from .folder import check_results_folder
     from .run import run_case
 

@@ -1,6 +1,7 @@
 """``CaseError``: a case that cannot be used. It sits below everything that raises it (the case
 file's reading, ``strand.app.case``; the checks across settings, ``strand.app.checks``; the set-up
-kinds and their registry, ``strand.app.kinds``) and imports nothing."""
+kinds, ``strand.app.kinds``, and their registry, ``strand.app.kind_registry``) and imports
+nothing."""
 
 from __future__ import annotations
 

@@ -18,7 +18,7 @@ import h5py
 import numpy as np
 import numpy.typing as npt
 
-from ..model.parallel import is_root
+from ..beam.parallel import is_root
 
 __all__ = ["HistoryWriter", "History", "read_history", "write_points_xdmf"]
 

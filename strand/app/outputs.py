@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..model.post import CellEvaluator, cell_results
+from ..model.cell_results import CellEvaluator, cell_results
 from ..model.reactions import ReactionGauge
 from .fatigue.recorders import PairHistory, WireSectionHistory
 from .recorders import (

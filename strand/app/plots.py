@@ -25,7 +25,7 @@ def results_figures(case, result, problem, kind) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..model.post import sector_of
+    from ..model.cell_results import sector_of
 
     folder = Path(result.folder)
     paths = []

@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from ..model.parallel import root_open
-from ..setups.base import columns, values
+from ..beam.parallel import root_open
+from ..beam.records import columns, values
 from .step_records import SlipFractions, StepBending, StepContext
 
 __all__ = [
@@ -161,7 +161,7 @@ class FieldSeries:
     the first step of a run from the start."""
 
     def __init__(self, folder: Path, problem, vtx: bool = True, initial: bool = True):
-        from ..model.fields import FieldWriter, cell_function
+        from ..beam.fields import FieldWriter, cell_function
 
         mesh, g = problem.cmesh.mesh, problem.geometry
         ids = [cell_function(mesh, g.cell_wire, "wire"), cell_function(mesh, g.cell_layer, "layer")]
@@ -276,7 +276,7 @@ class SlipTable(_CsvFile):
 
 class SmallSlidingMonitor:
     """Checks at every step that the pairs fixed at t = 0 still face each other
-    (``post.sliding_check``); at the first step where they do not, prints a warning to ``stream``
+    (``sliding_check.sliding_check``); at the first step where they do not, prints a warning to ``stream``
     and keeps it in ``warnings`` (for the summary). Not used with large sliding."""
 
     def __init__(self, model, stream, warnings: list[str]):
@@ -288,7 +288,7 @@ class SmallSlidingMonitor:
     def record(self, ctx: StepContext) -> None:
         if self.warned:
             return
-        from ..model.post import sliding_check
+        from ..model.sliding_check import sliding_check
 
         m = self.model
         check = sliding_check(m.geometry, m.positions(), ctx.pairs.gap)

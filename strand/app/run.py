@@ -30,9 +30,9 @@ from pathlib import Path
 
 from forms import ReissnerBeam
 
+from ..beam.parallel import root_stream
 from ..model.checkpoint import read_checkpoint
 from ..model.model import BeamFactory
-from ..model.parallel import root_stream
 from .build import build_problem as build_problem
 from .build import check_folder, restart_from, results_folder
 from .build import setup_and_programme as setup_and_programme

@@ -9,8 +9,8 @@ from dataclasses import KW_ONLY, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..model.cell_results import CellResults
 from ..model.pair_results import PairResults
-from ..model.post import CellResults
 from ..model.programme import Position
 from .step_records import RunStep, SlipFractions, StepBending
 

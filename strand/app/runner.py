@@ -14,8 +14,8 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from ..model.parallel import is_root
-from ..model.post import CellEvaluator, cell_results
+from ..beam.parallel import is_root
+from ..model.cell_results import CellEvaluator, cell_results
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord

@@ -4,7 +4,9 @@ from a case file).
 
 Every setting has a default. ``[load]`` and ``[steps]`` hold the settings every set-up kind shares
 and, in ``by_kind``, each registered kind's own (``strand.app.kinds``), all read flat as the case
-file writes them (``case.load.zone``). ``strand.app.case`` checks a case file's values against
+file writes them (``case.load.zone``). The settings read the kinds from their registry
+(``strand.app.kind_registry``) and import none: the kinds are built on the settings, and the
+built-in ones are registered by importing ``strand.app.kinds``, which reading a case does. ``strand.app.case`` checks a case file's values against
 these. Units: SI, in the comments.
 """
 
@@ -17,6 +19,7 @@ from typing import Any, ClassVar
 
 from ..cable.description import Cable
 from ..model.contact_settings import ContactSettings
+from .kind_registry import registered
 
 __all__ = [
     "Case",
@@ -45,9 +48,9 @@ KIND_SECTIONS = {"load": "load_settings", "steps": "step_settings"}
 
 
 def _kind_defaults(section: str) -> dict[str, Any]:
-    """Every registered set-up kind's own settings of ``section`` at their defaults, by kind."""
-    from .kinds.registry import registered  # with the package: the built-in kinds registered
-
+    """Every registered set-up kind's own settings of ``section`` at their defaults, by kind
+    (the built-in kinds are registered once ``strand.app.kinds`` is imported, as reading a case
+    does)."""
     return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in registered()}
 
 
@@ -336,8 +339,6 @@ def unit_of(section: str, key: str) -> str:
     kind's own); "" for a ratio, a count or a setting that is not a number."""
     classes = [SECTIONS[section]]
     if section in KIND_SECTIONS:
-        from .kinds.registry import registered
-
         classes += [getattr(kind, KIND_SECTIONS[section]) for kind in registered()]
     for cls in classes:
         units = getattr(cls, "UNITS", {})

@@ -14,9 +14,9 @@ import numpy as np
 import numpy.typing as npt
 
 if TYPE_CHECKING:
+    from ..model.cell_results import CellResults
     from ..model.checkpoint import Checkpoint
     from ..model.pair_results import PairResults
-    from ..model.post import CellResults
     from ..model.problem import StrandProblem
     from ..model.programme import Position
 
@@ -109,7 +109,7 @@ class StepContext:
 
     @property
     def cells(self) -> CellResults:
-        """``post.CellResults`` at this step (computed once)."""
+        """``cell_results.CellResults`` at this step (computed once)."""
         if self._cells is None:
             self._cells = self._evaluate()
         return self._cells

@@ -10,10 +10,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ..analytical.fibre import bending_stiffness_bounds, fibre_model
 from ..cable.geometry import LINE
 from ..model.layer_pressure import in_middle_half, layer_wire_forces
 from ..model.pair_results import PairResults
-from ..model.post import bending_stiffness_bounds, fibre_model
 from .run_result import RunResult
 from .settings import Case
 

@@ -19,9 +19,9 @@ import numpy as np
 
 from forms import ReissnerBeam
 
+from ..beam.parallel import is_root, on_root, root_stream
 from ..model.checkpoint import restore
 from ..model.model import BeamFactory
-from ..model.parallel import is_root, on_root, root_stream
 from ..model.programme import LoadProgramme, Position
 from .build import (
     build_problem,
@@ -151,7 +151,7 @@ class SweepTable:
 
 def unit_of(record_type, name: str) -> str:
     """The unit of the field ``name`` of a set-up's record type, as column names write it
-    (``setups.base.quantity``: "m", "1_per_m"; "" for none)."""
+    (``strand.beam.records.quantity``: "m", "1_per_m"; "" for none)."""
     return next(f.metadata.get("unit", "") for f in fields(record_type) if f.name == name)
 
 

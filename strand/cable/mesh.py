@@ -11,6 +11,7 @@ import numpy.typing as npt
 from dolfinx import fem
 from mpi4py import MPI
 
+from ..beam.partition import slab_partitioner
 from .geometry import StrandGeometry
 
 __all__ = [
@@ -105,11 +106,9 @@ def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD, stenci
     """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays). On several
     ranks it is cut in axial slabs, ghosted so that each row of ``stencils`` (input node indices,
     anchor first: contact pairs, end sections) is whole on the rank owning its anchor
-    (``strand.model.partition``)."""
+    (``strand.beam.partition``)."""
     partitioner = None
     if comm.size > 1:
-        from ..model.partition import slab_partitioner
-
         partitioner = slab_partitioner(geometry.points[:, 2], geometry.cells, stencils)
     mesh = polyline_mesh(comm, geometry.points, geometry.cells, partitioner)
     n_local = mesh.topology.index_map(1).size_local

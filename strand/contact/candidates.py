@@ -55,7 +55,7 @@ def candidate_pairs(
     The search runs on the whole mesh (``nodes.input_arrays``), so it finds the same pairs on
     any number of ranks, numbered alike (``NodePairs.index``). On several ranks each pair's
     nodes and their neighbours must all be on the rank owning its node a: build the mesh with
-    ``strand.model.partition.slab_partitioner(z, cells, [candidate_stencils(points, cells, ...)])``;
+    ``strand.beam.partition.slab_partitioner(z, cells, [candidate_stencils(points, cells, ...)])``;
     otherwise ``ContactError`` on every rank.
 
     Args:
@@ -87,7 +87,7 @@ def candidate_pairs(
     if split:
         raise ContactError(
             f"candidate_pairs: {split} of {len(table)} pairs have nodes on other ranks than their "
-            "node a's: build the mesh with strand.model.partition.slab_partitioner(z, cells, "
+            "node a's: build the mesh with strand.beam.partition.slab_partitioner(z, cells, "
             "[candidate_stencils(points, cells, ...)]) to keep each pair on one rank"
         )
     gap = None if initial_gap is None else _per_pair(initial_gap, len(table), "initial_gap")[rows]

@@ -27,8 +27,8 @@ import numpy as np
 import numpy.typing as npt
 from mpi4py import MPI
 
+from ..beam.parallel import is_root
 from ..solver import RampState
-from .parallel import is_root
 from .programme import Position
 
 __all__ = [

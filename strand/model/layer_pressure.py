@@ -122,7 +122,7 @@ def layer_wire_forces(
 ) -> Array:
     """Mean axial force (N) of the cells of each helical layer 1, 2, … (and first of the core,
     layer 0, with ``core``) whose midpoint ``z`` (m) lies in the middle half of the span
-    ``length`` (``in_middle_half``; ``post.CellResults``' arrays)."""
+    ``length`` (``in_middle_half``; ``cell_results.CellResults``' arrays)."""
     layer, z, axial = (np.asarray(v) for v in (layer, z, axial))
     middle = in_middle_half(z, length)
     n = int(layer.max()) if len(layer) else 0

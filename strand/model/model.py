@@ -18,12 +18,12 @@ from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 
+from ..beam.fields import cell_function
+from ..beam.partition import DistributionError, owned_rows
 from ..cable.geometry import StrandGeometry
 from ..cable.mesh import CableMesh, beam_space, cable_mesh, input_to_block
 from .contact_settings import ContactSettings
-from .fields import cell_function
 from .pair_results import PairResults
-from .partition import DistributionError, owned_rows
 from .same_layer import SameLayerPairs, same_layer_groups, same_layer_pairs
 from .strand_contact import (
     contact_groups,

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import replace
+from typing import Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -19,7 +20,6 @@ from petsc4py import PETSc
 from forms import ReissnerBeam
 
 from ..cable.geometry import StrandGeometry
-from ..setups.base import TestSetup
 from ..solver import NewtonOptions, NonlinearProblem
 from ..solver.convergence import STALL_AFTER
 from ..solver.ordering import ORDERINGS, cheapest_ordering
@@ -27,13 +27,22 @@ from .contact_settings import ContactSettings
 from .model import BeamFactory, StrandModel
 from .pair_results import PairResults
 
-__all__ = ["StrandProblem"]
+__all__ = ["StrandProblem", "Conditions"]
 
 Array = npt.NDArray[np.float64]
 
 #: unknowns from which the MUMPS ordering is chosen by trial: below, an LU takes ~0.1 s or less
 #: and the trial factorisations would cost more than the choice saves
 ORDERING_TRIAL_SIZE = 50_000
+
+
+class Conditions(Protocol):
+    """What the problem takes from its test set-up (a ``strand.setups.TestSetup``, which the
+    model does not import: the set-ups are built on the model): its supports and its pair terms
+    (ties, nodal loads)."""
+
+    bcs: list
+    terms: list
 
 
 class StrandProblem:
@@ -57,7 +66,7 @@ class StrandProblem:
         contact: ContactSettings | None = None,
         options: NewtonOptions | None = None,
         *,
-        setup: Callable[[StrandModel], TestSetup],
+        setup: Callable[[StrandModel], Conditions],
         comm: MPI.Comm = MPI.COMM_WORLD,
         monitor=None,
         beam: BeamFactory = ReissnerBeam,

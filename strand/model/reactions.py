@@ -21,7 +21,7 @@ import numpy.typing as npt
 from dolfinx.fem import petsc as fem_petsc
 from petsc4py import PETSc
 
-from ..setups.base import quantity
+from ..beam.records import quantity
 from ..solver.terms import PairAssembler
 
 __all__ = ["EndReactions", "ReactionGauge", "end_reactions"]

@@ -52,6 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from ..beam.partition import owned_rows
 from ..cable.geometry import StrandGeometry
 from ..contact.candidates import closest_on_segments
 from ..contact.element import ContactGroup
@@ -61,7 +62,6 @@ from ..contact.normal_laws import NormalLaw, SmoothOnset
 from ..contact.segment import SegmentGroup
 from .compliances import Wires, compliance_named
 from .layer_states import SAME_LAYER, helix_clearance, spread_gaps
-from .partition import owned_rows
 
 __all__ = [
     "SAME_LAYER_STENCILS",

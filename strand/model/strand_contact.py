@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from ..beam.partition import DistributionError, owned_rows
 from ..cable.geometry import LINE, POINT, StrandGeometry
 from ..contact.element import ContactGroup
 from ..contact.friction_laws import FrictionLaw
@@ -28,7 +29,6 @@ from ..contact.windows import NodeChains, SlidingWindows, chain_windows, sliding
 from .compliances import Wires, compliance_named
 from .contact_settings import ContactSettings
 from .layer_states import first_layer_lift
-from .partition import DistributionError, owned_rows
 from .same_layer import SameLayerPairs, same_layer_laws
 
 __all__ = [
@@ -79,7 +79,7 @@ def strand_pairs(
     if np.any(blocks < 0):
         raise DistributionError(
             "contact pairs whose nodes are not all on this process: distribute the mesh with "
-            "strand.model.partition.slab_partitioner and keep the pairs this rank owns (owned_rows)"
+            "strand.beam.partition.slab_partitioner and keep the pairs this rank owns (owned_rows)"
         )
     kinds = pairs.kind[sel]
     if len(np.unique(kinds)) > 1:

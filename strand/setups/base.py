@@ -3,48 +3,20 @@ load parameters, and what it measures, as typed records.
 
 A set-up is built on a ``StrandModel`` and never owns the unknowns: it hands its conditions and
 terms to the solver and reads the model's state. Its ``state()`` is a frozen dataclass whose fields
-carry their unit in ``metadata["unit"]``, so that recorders write any set-up's records as CSV
-columns named ``<field>_<unit>``. Units: m, N, N m, rad.
+carry their unit in ``metadata["unit"]`` (``strand.beam.records``), so that recorders write any
+set-up's records as CSV columns named ``<field>_<unit>``. Units: m, N, N m, rad.
 """
 
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import field, fields
 
 import numpy as np
 import numpy.typing as npt
 
 from ..solver import NodalLoad
 
-__all__ = [
-    "TestSetup",
-    "PenaltyLinks",
-    "pilot_links",
-    "owned_load",
-    "quantity",
-    "columns",
-    "values",
-]
-
-
-def quantity(unit: str, doc: str = ""):
-    """A dataclass field of a record, with its unit (for the CSV column name)."""
-    return field(metadata={"unit": unit, "doc": doc})
-
-
-def columns(record_type) -> list[str]:
-    """CSV column names ``<name>_<unit>`` of a record dataclass (unit-less fields: ``<name>``)."""
-    names = []
-    for f in fields(record_type):
-        unit = f.metadata.get("unit", "")
-        names.append(f"{f.name}_{unit}" if unit else f.name)
-    return names
-
-
-def values(record) -> list:
-    """The field values of a record, in ``columns`` order."""
-    return [getattr(record, f.name) for f in fields(record)]
+__all__ = ["TestSetup", "PenaltyLinks", "pilot_links", "owned_load"]
 
 
 class TestSetup(ABC):
@@ -83,7 +55,7 @@ class TestSetup(ABC):
     @abstractmethod
     def moment_curvature(self, cells, residual):
         """The bending measures at the current state (a frozen dataclass), given the cell
-        results (``post.cell_results``) and the unconstrained residual (n_blocks, 6), whose
+        results (``cell_results.cell_results``) and the unconstrained residual (n_blocks, 6), whose
         values at supported dofs are the reactions."""
 
     @property

@@ -42,10 +42,11 @@ import numpy as np
 import numpy.typing as npt
 from dolfinx import fem
 
+from ..beam.records import quantity
 from ..contact.kinematics import rotation_matrix
+from ..model.cell_results import section_resultants
 from ..model.model import StrandModel
-from ..model.post import section_resultants
-from .base import TestSetup, pilot_links, quantity
+from .base import TestSetup, pilot_links
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]
 

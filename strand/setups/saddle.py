@@ -20,10 +20,12 @@ import numpy as np
 import numpy.typing as npt
 from dolfinx import fem
 
+from ..analytical.fibre import bending_stiffness_bounds
+from ..beam.records import quantity
+from ..model.cell_results import section_resultants
 from ..model.model import StrandModel
-from ..model.post import bending_stiffness_bounds, section_resultants
 from ..solver.displacement_control import DisplacementControl
-from .base import TestSetup, owned_load, pilot_links, quantity
+from .base import TestSetup, owned_load, pilot_links
 
 __all__ = [
     "SaddleTest",

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..model.post import section_resultants
-from .base import quantity
+from ..beam.records import quantity
+from ..model.cell_results import section_resultants
 from .saddle import SaddleTest
 
 __all__ = ["TensionCycleTest", "TensionCycleState", "TensionSection"]

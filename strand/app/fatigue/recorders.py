@@ -122,10 +122,10 @@ class WireSectionHistory(_CycleHistory):
     outward radius; the load direction for the core) and e₂ = t × e₁, and the torque T = m·t
     (N m, about the current tangent t): what surface stresses follow from
     (``strand.fatigue.stress``); the spin θ·t (rad, the section's rotation about t: its nodes'
-    mean rotation vector projected on t, ``post.section_spin``), the displacement of the
+    mean rotation vector projected on t, ``cell_results.section_spin``), the displacement of the
     core's nodes ``core_u`` (m), and ``midspan_force`` (3,): the force resultant Σ n (N; the
     wires' spatial section forces, axial and shear) of the cross-section z = L/2
-    (``post.section_resultants``), whose z component is the strand's tension there. Static: wire, layer, initial z (m), angle φ (deg, as
+    (``cell_results.section_resultants``), whose z component is the strand's tension there. Static: wire, layer, initial z (m), angle φ (deg, as
     ``axial_forces.csv``), wire diameter (m), and the core nodes' initial z ``core_z``."""
 
     def __init__(self, folder: Path, model, cells_now, direction, parameter: str):
@@ -148,7 +148,7 @@ class WireSectionHistory(_CycleHistory):
 
     def _arrays(self, ctx: StepContext) -> dict:
         from ...fatigue.stress import section_components, section_frames
-        from ...model.post import section_resultants
+        from ...model.cell_results import section_resultants
 
         c = ctx.cells
         e1, e2 = section_frames(c.tangent, c.radial, fallback=self.direction)

@@ -5,7 +5,7 @@ A kind (``SetupKind``, ``strand.app.kinds.base``) is one module: its own ``[load
 ``[steps]`` settings (frozen dataclasses; the case file lists them flat beside the common ones),
 its checks of a case, the test set-up it builds (a ``strand.setups`` class, the library's
 mechanics), its load programme, the measure a sweep reports, its analytical reference, its
-summary lines and figures. The registry (``strand.app.kinds.registry``) maps ``[load] kind``
+summary lines and figures. The registry (``strand.app.kind_registry``) maps ``[load] kind``
 names to kinds: ``register`` adds one (the built-in ones at the end of this module), ``lookup``
 finds one by name (a ``CaseError`` naming the known kinds otherwise) and ``kind_of`` gives a
 case's, as the case's settings run it (``SetupKind.for_case``: a variant with another load
@@ -18,9 +18,9 @@ parameter, such as the saddle test under displacement control). The built-in kin
 
 from __future__ import annotations
 
+from ..kind_registry import lookup, registered, unregister
 from .base import NoSettings, SetupKind, kind_of, register, tension_stage, tension_then_cycle
 from .bending import UniformBending
-from .registry import lookup, registered, unregister
 from .saddle import Saddle
 from .tension_cycle import TensionCycle
 

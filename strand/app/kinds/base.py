@@ -1,7 +1,7 @@
 """What a set-up kind is (``SetupKind``: its settings, checks, set-up, programme, reference,
 summary lines and figures), the load programme most kinds share (``tension_then_cycle``), and
 ``register`` and ``kind_of``, the registry's doors that know the settings and the case
-(``strand.app.kinds.registry`` holds the kinds)."""
+(``strand.app.kind_registry`` holds the kinds)."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ from typing import Any
 
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ..errors import CaseError
+from ..kind_registry import add, lookup, registered
 from ..settings import Case, LoadSettings, StepSettings
-from .registry import add, lookup, registered
 
 __all__ = [
     "SetupKind",

@@ -21,7 +21,7 @@ import numpy.typing as npt
 
 from ...analytical import StickEstimate
 from ...cable.description import Cable
-from ...model.post import LayerFields
+from ...model.layer_fields import LayerFields
 from ...setups.bending import ZoneBending
 from ..errors import CaseError
 from ..layer_report import layer_pressure_figure, layer_pressure_lines
@@ -118,7 +118,7 @@ class UniformBending(SetupKind):
 
 @dataclass(frozen=True)
 class StickRolling:
-    """The wires' fields per helical layer in the measuring zone (``post.LayerFields``: axial
+    """The wires' fields per helical layer in the measuring zone (``layer_fields.LayerFields``: axial
     force share of plane sections, spin and torque per unit curvature) at the first cycle step
     (the stick regime) and at the largest curvature, with M/κ there over EI_max, beside the
     smeared estimate of wires rolling on stuck ties (``analytical.stick_bending_estimate``;
@@ -235,7 +235,7 @@ def stick_rolling(
     state, and its ``ZoneBending`` records), beside ``stick_bending_estimate(cable)``; None
     without those states or with a zero curvature."""
     from ...analytical import StickSlipLaw, stick_bending_estimate
-    from ...model.post import zone_layer_fields
+    from ...model.layer_fields import zone_layer_fields
 
     base, peak = result.tensioned, result.peak_step
     if base is None or result.first_cycle is None or result.peak is None or not result.bending:

@@ -107,7 +107,7 @@ def midspan_bending_figure(case: Case, result, note: str = "") -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ...model.post import bending_stiffness_bounds
+    from ...analytical.fibre import bending_stiffness_bounds
     from ..plots import save_figure
 
     kappa = np.array([row.measures.curvature for row in result.bending])

@@ -10,7 +10,7 @@ load at midspan applied after the tension and held through the cycle; 0: none; t
 tension_swing`` and ``tension_swing_max`` (N). The set-up is the saddle test's
 (``strand.setups.tension_cycle.TensionCycleTest``, a ``strand.setups.saddle.SaddleTest``: z = 0 clamped, z = L a rigid end section pulled by a
 force), whose end force is the tension plus the swing. Its reference: the fibre model (ends held
-against rotation, ``post.fibre_model``): the end displacement per unit end force L/EA and the
+against rotation, ``analytical.fibre_model``): the end displacement per unit end force L/EA and the
 wires' axial stress change E cos²α ΔT/EA per layer. The fatigue report's strand-level T–N check
 (``strand.fatigue.tn``) then sees the tension cycle. Units: m, N, Pa.
 """
@@ -23,13 +23,13 @@ from typing import ClassVar
 
 import numpy as np
 
-from ...model.post import fibre_model
+from ...analytical.fibre import fibre_model
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ...setups.tension_cycle import TensionCycleState, TensionCycleTest, TensionSection
 from ..errors import CaseError
+from ..kind_registry import lookup
 from ..settings import Case
 from .base import SetupKind, tension_stage
-from .registry import lookup
 
 __all__ = [
     "TensionCycle",

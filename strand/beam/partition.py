@@ -134,6 +134,6 @@ def owned_rows(stencils: npt.ArrayLike, n_owned: int, what: str = "terms") -> np
     if len(missing):
         raise DistributionError(
             f"{len(missing)} {what} have their anchor node on this rank but not all their other "
-            "nodes: build the mesh with their stencils (strand.model.partition.slab_partitioner)"
+            "nodes: build the mesh with their stencils (strand.beam.partition.slab_partitioner)"
         )
     return rows

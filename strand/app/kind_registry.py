@@ -1,8 +1,8 @@
 """The registry of set-up kinds: the kinds by their ``[load] kind`` name, in the order registered.
 
 It imports nothing but ``CaseError``, so that what sits below the kinds can read it: the settings
-take every registered kind's own settings from ``registered`` (importing this module loads the
-package ``strand.app.kinds`` first, which registers the built-in kinds). ``register``
+take every registered kind's own settings from ``registered``; the package ``strand.app.kinds``
+registers the built-in kinds when it is imported. ``register``
 (``strand.app.kinds.base``) checks a kind against the settings before it adds it here
 (``add``)."""
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..errors import CaseError
+from .errors import CaseError
 
 __all__ = ["add", "unregister", "registered", "lookup"]
 

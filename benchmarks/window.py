@@ -102,25 +102,29 @@ def worktree(commit: str) -> Path:
 
 
 def _api() -> dict:
-    """What a variant's code offers the window, from its layout: today's sub-packages, or the
-    flat package of the commits before the re-cut (ef5ccec)."""
-    try:
-        from strand.app.build import build_problem, step_control
-        from strand.app.case import load_case
-        from strand.model.cell_results import cell_results
-        from strand.model.programme import run_programme
-    except ImportError:  # the flat layout
-        from strand.build import build_problem, step_control
-        from strand.case import load_case
-        from strand.post import cell_results
-        from strand.programme import run_programme
-    return {
-        "build_problem": build_problem,
-        "step_control": step_control,
-        "load_case": load_case,
-        "cell_results": cell_results,
-        "run_programme": run_programme,
+    """What a variant's code offers the window, wherever its layout puts it: today's, the
+    sub-packages of the re-cut before ``model/post.py`` was split, or the flat package of the
+    commits before the re-cut (ef5ccec)."""
+    from importlib import import_module
+
+    where = {
+        "build_problem": ("strand.app.build", "strand.build"),
+        "step_control": ("strand.app.build", "strand.build"),
+        "load_case": ("strand.app.case", "strand.case"),
+        "cell_results": ("strand.model.cell_results", "strand.model.post", "strand.post"),
+        "run_programme": ("strand.model.programme", "strand.programme"),
     }
+    api = {}
+    for name, modules in where.items():
+        for module in modules:
+            try:
+                api[name] = getattr(import_module(module), name)
+                break
+            except ImportError:
+                continue
+        else:
+            raise ImportError(f"{name} in none of {modules}")
+    return api
 
 
 def measures(problem) -> dict:

@@ -87,6 +87,8 @@ _API = {
     "NonlinearProblem": "strand.solver",
     "PairTerms": "strand.solver",
     "NodalLoad": "strand.solver",
+    "HistoryState": "strand.solver",
+    "InternalVariables": "strand.solver",
     "NewtonOptions": "strand.solver",
     "NewtonResult": "strand.solver",
     "NewtonConvergence": "strand.solver",

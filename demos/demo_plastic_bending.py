@@ -15,8 +15,9 @@
 # keeps its state (the plastic curvature) with strand's `InternalVariables`, which commit it
 # after converged load steps only, and checks the residual curvature against the closed form.
 #
-# **The law.** Per bending axis, the moment follows the elastic part of the curvature, and a
-# yield function with linear kinematic hardening bounds it:
+# **The law.** Per bending axis (enough for a wire bent in one plane), the moment follows the
+# elastic part of the curvature, and a yield function with linear kinematic hardening bounds
+# it:
 #
 # $$M = EI\,(\kappa - \kappa_p), \qquad f = |M - H\kappa_p| - M_y \le 0,$$
 #
@@ -142,7 +143,7 @@ class PlasticBeam(ReissnerBeam):
 # copper wire: $d$ = 3 mm, $E$ = 120 GPa, first yield at $\sigma_y$ = 70 MPa, so
 # $M_y = \sigma_y \pi d^3/32$, and a hardening modulus $H = EI/4$.
 
-r, L, n = 1.5e-3, 0.06, 60  # wire radius, length of b, cells of b (m)
+r, L, n = 1.5e-3, 0.06, 60  # wire radius (m), length of b (m), cells of b
 E, nu, sigma_y = 120e9, 0.33, 70e6
 x_b = np.linspace(0.0, L, n + 1)[:, None] * [1.0, 0.0, 0.0] + [0.0, 0.0, 2 * r]
 x_a = np.linspace(-0.01, 0.01, 11)[:, None] * [0.0, 1.0, 0.0] + [L, 0.0, 0.0]
@@ -167,13 +168,13 @@ beam = PlasticBeam(w, section, kappa_p, M_y, H)
 # The pair gets a penalty law, no friction, and its initial normal for good (`"frozen"`): with
 # the default `"director"` normal, from the wires' rotated tangents, the contact point would
 # move along b as its tip turns (by about $2r\theta$, 70 µm here), shortening the lever arm
-# by a relative 1e-3. Wire a is prescribed in full: it moves up by
-# $\delta$ and nothing else. Wire b is clamped at $x = 0$. `InternalVariables` maps `kappa_p`
-# to its update: `NonlinearProblem(history=[...])` commits it once per converged step, after
-# the unknowns, and restores it whenever a failed attempt is rolled back, so Newton's
-# iterations and `LoadStepper`'s discarded attempts never touch it. (In a strand, a law built
-# by the `beam` factory lists such objects as its `history`, and `StrandProblem` passes them
-# on; its fatigue outputs refuse it, as its stresses are not Navier's elastic ones.)
+# by a relative 1e-3. Wire a is prescribed in full: it moves up by $\delta$ and nothing else.
+# Wire b is clamped at $x = 0$. `InternalVariables` maps `kappa_p` to its update:
+# `NonlinearProblem(history=[...])` commits it once per converged step, after the unknowns,
+# and restores it whenever a failed attempt is rolled back, so Newton's iterations and
+# `LoadStepper`'s discarded attempts never touch it. (In a strand, a law built by the `beam`
+# factory lists such objects as its `history`, and `StrandProblem` passes them on; its fatigue
+# outputs refuse it, as its stresses are not Navier's elastic ones.)
 
 K_N = 1e8
 pairs = candidate_pairs(V, a, b, r, r, reach)

@@ -79,7 +79,8 @@ class InternalVariables:
             scratch.interpolate(expression)  # every local cell, ghosts included
         for f, scratch, saved in zip(self.functions, self._scratch, self._committed, strict=True):
             f.x.array[:] = scratch.x.array
-            saved[:] = scratch.x.array
+            f.x.scatter_forward()  # ghosts as their owners computed them
+            saved[:] = f.x.array
         self.commits += 1
 
     def rollback(self) -> None:

@@ -51,6 +51,7 @@ from .rotations import (
 __all__ = [
     "CircularSection",
     "ReissnerBeam",
+    "has_elastic_stresses",
     "unit_tangent",
     "tangent_frame",
     "moment_virtual_work",
@@ -208,6 +209,12 @@ class ReissnerBeam:
     through ``strand``'s beam factory: ``StrandModel(geometry, beam=MyBeam)`` calls
     ``MyBeam(w, section)`` with the strand's unknown and its layers' section.
 
+    A history-dependent law (plasticity) reads a state of the last converged step from
+    functions of its own and lists, as ``history``, the objects that update them once per
+    converged step (``strand.solver.InternalVariables``); ``StrandProblem`` hands them to its
+    Newton problem. A law whose surface stresses are not Navier's from ``N`` and ``M`` leaves
+    ``elastic_stresses`` (``has_elastic_stresses``): strand's fatigue outputs refuse it.
+
     Args:
         w: the (6,)-valued P1 unknown (u, θ) on a 1D mesh in 3D.
         section: the section law (``CircularSection``); the forms hold its numbers as
@@ -215,6 +222,15 @@ class ReissnerBeam:
         frame: initial frame Λ0 = [t, e2, e3] per cell; default ``tangent_frame(unit_tangent(mesh))``.
         dx: integration measure; default one-point rule (reduced integration).
     """
+
+    #: the state of a history-dependent law: objects with ``commit()`` and ``rollback()``
+    #: (``strand.solver.HistoryState``), committed once per converged step; none here
+    history: tuple = ()
+    #: whether Navier's formula, σ = N/A + M r/I at the surface of a linear elastic round wire,
+    #: gives this law's stresses from ``N`` and ``M`` (strand's fatigue outputs compute them so).
+    #: A subclass that overrides the law (``N``, ``M``, ``strain_energy_density``, ``residual``)
+    #: does not inherit it: it sets it again if true (``has_elastic_stresses``)
+    elastic_stresses: bool = True
 
     def __init__(self, w, section: CircularSection, frame=None, dx=None):
         check_beam_unknown(w)
@@ -297,6 +313,29 @@ class ReissnerBeam:
         if v is None:
             v = ufl.TestFunction(self.w.function_space)
         return ufl.derivative(self.energy(), self.w, v)
+
+
+#: the members that make a beam's law: a subclass overriding any of them has a law of its own
+LAW_MEMBERS = ("N", "M", "strain_energy_density", "residual")
+
+
+def has_elastic_stresses(beam) -> bool:
+    """Whether the beam law ``beam`` (an instance or a class) declares Navier's stresses:
+    ``elastic_stresses`` true, set by the class that last defines the law (``LAW_MEMBERS``) or
+    by one derived from it, or on the instance. A subclass of ``ReissnerBeam`` with a law of
+    its own (softening, plasticity) is thus not taken at its parent's word; an object without
+    the attribute does not declare it."""
+    if not isinstance(beam, type) and "elastic_stresses" in getattr(beam, "__dict__", {}):
+        return bool(beam.elastic_stresses)
+    cls = beam if isinstance(beam, type) else type(beam)
+    declared = next((k for k in cls.__mro__ if "elastic_stresses" in vars(k)), None)
+    if declared is None or not declared.elastic_stresses:
+        return False
+    for name in LAW_MEMBERS:
+        defined = next((k for k in cls.__mro__ if name in vars(k)), None)
+        if defined is not None and not issubclass(declared, defined):
+            return False
+    return True
 
 
 def moment_virtual_work(moment, theta, v_theta) -> ufl.core.expr.Expr:

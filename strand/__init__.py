@@ -88,6 +88,8 @@ _API = {
     "NonlinearProblem": "strand.solver",
     "PairTerms": "strand.solver",
     "NodalLoad": "strand.solver",
+    "HistoryState": "strand.solver",
+    "InternalVariables": "strand.solver",
     "NewtonOptions": "strand.solver",
     "NewtonResult": "strand.solver",
     "NewtonConvergence": "strand.solver",
@@ -232,6 +234,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .setups import UniformBendingTest as UniformBendingTest
     from .setups.tension_cycle import TensionCycleTest as TensionCycleTest
     from .solver import ErrorControl as ErrorControl
+    from .solver import HistoryState as HistoryState
+    from .solver import InternalVariables as InternalVariables
     from .solver import Interrupt as Interrupt
     from .solver import LoadStepFailure as LoadStepFailure
     from .solver import LoadStepper as LoadStepper

@@ -29,12 +29,15 @@ from pathlib import Path
 import pytest
 from dolfinx import fem
 
-from forms import CircularSection, ReissnerBeam
+from forms import CircularSection, ReissnerBeam, has_elastic_stresses
 from strand.analytical.fibre import bending_stiffness_bounds
+from strand.app.build import build_problem, check_beam_law
 from strand.app.case import case_from_dict
+from strand.app.errors import CaseError
 from strand.app.run import run_case
 from strand.cable.geometry import build_geometry
 from strand.model.cell_results import cell_results
+from strand.model.checkpoint import CheckpointError, restore
 from strand.model.contact_settings import ContactSettings
 from strand.model.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
@@ -149,6 +152,108 @@ def test_run_case_takes_the_beam_factory_on_1_and_2_ranks(tmp_path):
         slopes.append(float(lines[0]))
     assert slopes[0] == pytest.approx(3 * ei_min(), rel=0.03)
     assert slopes[1] == pytest.approx(slopes[0], rel=1e-8)
+
+
+#: the ``HalfMoments`` beams built (``id`` of their unknown)
+BUILT: list[int] = []
+
+
+class HalfMoments(ReissnerBeam):
+    """A law of its own (its moments halved), which says nothing of its stresses."""
+
+    def __init__(self, w, section):
+        BUILT.append(id(w))
+        super().__init__(w, section)
+
+    @property
+    def M(self):
+        return 0.5 * super().M
+
+
+class DeclaredHalfMoments(HalfMoments):
+    """The same law, declaring Navier's stresses (as a linear elastic law may)."""
+
+    elastic_stresses = True
+
+
+class Renamed(ReissnerBeam):
+    """ReissnerBeam's law under another name: it inherits the declaration."""
+
+
+def test_a_law_declares_navier_stresses_or_has_none():
+    """``ReissnerBeam`` declares Navier's stresses, and so does a subclass that keeps its law;
+    one that overrides the law (``M``) does not inherit it, unless it sets it again, on its
+    class or its instance; an object without the attribute does not declare it."""
+    assert has_elastic_stresses(ReissnerBeam) and has_elastic_stresses(Renamed)
+    assert not has_elastic_stresses(HalfMoments)
+    assert has_elastic_stresses(DeclaredHalfMoments)
+    own = HalfMoments.__new__(HalfMoments)
+    own.elastic_stresses = True
+    assert has_elastic_stresses(own)
+    assert not has_elastic_stresses(object())
+
+
+def half_moments(w: fem.Function, section: CircularSection) -> ReissnerBeam:
+    """A factory whose law shows only once built (a function, not a class)."""
+    return HalfMoments(w, section)
+
+
+@pytest.mark.parametrize(
+    "beam", [HalfMoments, partial(HalfMoments), half_moments], ids=["class", "partial", "function"]
+)
+def test_fatigue_outputs_refuse_a_law_without_navier_stresses(beam, tmp_path):
+    """A case with the fatigue outputs (the default) run with ``HalfMoments`` stops in one line
+    naming the law and the setting that lets it run, before any step and before its folder is
+    written: before the strand is built where the factory shows its class, else once built."""
+    folder = tmp_path / "run"
+    BUILT.clear()
+    with pytest.raises(CaseError) as refused:
+        run_case(case_from_dict(CASE), folder, stream=io.StringIO(), beam=beam)
+    message = str(refused.value)
+    assert "\n" not in message
+    assert "HalfMoments" in message and "[fatigue] outputs = false" in message
+    assert not folder.exists()
+    assert len(BUILT) == (1 if beam is half_moments else 0)
+    case = case_from_dict({**CASE, "fatigue": {"outputs": False}})
+    check_beam_law(case, HalfMoments)  # without the fatigue outputs, the law runs
+    check_beam_law(case_from_dict(CASE), DeclaredHalfMoments)
+
+
+class Counted:
+    """A ``HistoryState`` that counts its commits."""
+
+    def __init__(self):
+        self.commits = 0
+
+    def commit(self) -> None:
+        self.commits += 1
+
+    def rollback(self) -> None:
+        pass
+
+
+def with_history(w: fem.Function, section: CircularSection) -> ReissnerBeam:
+    """``ReissnerBeam`` with a state of its own (``history``)."""
+    beam = ReissnerBeam(w, section)
+    beam.history = [Counted()]
+    return beam
+
+
+def test_a_laws_history_reaches_the_strand_solver_and_refuses_a_restore():
+    """A law's ``history`` is the strand's Newton problem's: committed with each converged
+    step. A checkpoint (or a sweep's kept state) does not hold it, so restoring one is refused
+    in one line."""
+    case = case_from_dict({**CASE, "fatigue": {"outputs": False}})
+    problem, _ = build_problem(case, io.StringIO(), beam=with_history)
+    try:
+        state = problem.model.beam.history[0]
+        assert problem.solver.history == [state]
+        problem.solver.commit()
+        assert state.commits == 1
+        with pytest.raises(CheckpointError, match="has a state of its own"):
+            restore(problem, None)
+    finally:
+        problem.solver.destroy()
 
 
 if __name__ == "__main__":

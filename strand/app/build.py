@@ -4,9 +4,10 @@ its load programme, and the state a restart continues from. Units: SI."""
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
-from forms import ReissnerBeam
+from forms import ReissnerBeam, has_elastic_stresses
 
 from ..beam.parallel import on_root
 from ..cable.geometry import build_geometry
@@ -18,6 +19,7 @@ from ..solver import ErrorControl, NewtonOptions, keep_freed_memory
 from ..solver.convergence import STALL_AFTER
 from .case import check_loads_given
 from .case_toml import case_toml
+from .errors import CaseError
 from .folder import RUN_MARKER, check_results_folder, prepare_results_folder
 from .kinds import SetupKind, kind_of
 from .run_result import Start
@@ -31,6 +33,7 @@ __all__ = [
     "newton_options",
     "setup_and_programme",
     "build_problem",
+    "check_beam_law",
     "restart_from",
     "LARGE_MESH",
     "BYTES_PER_UNKNOWN",
@@ -124,6 +127,29 @@ def size_announcement(n_elements: int, n_unknowns: int) -> str:
     )
 
 
+def _law_class(beam: BeamFactory) -> type | None:
+    """The class a beam factory builds, where it shows without calling it: the factory
+    itself, or the class a ``functools.partial`` wraps; None for another callable."""
+    while isinstance(beam, functools.partial):
+        beam = beam.func
+    return beam if isinstance(beam, type) else None
+
+
+def check_beam_law(case: Case, beam) -> None:
+    """Refuse, in one line (``CaseError``), a beam law whose wire stresses the case's fatigue
+    outputs cannot recover: they apply Navier's elastic formula to the law's N and M, so the
+    law must declare it (``forms.has_elastic_stresses``). ``beam``: the law's class, or the
+    beam built."""
+    if case.fatigue.outputs and not has_elastic_stresses(beam):
+        name = (beam if isinstance(beam, type) else type(beam)).__name__
+        raise CaseError(
+            f"{case.source}: the beam law {name} does not declare elastic_stresses, and the "
+            "fatigue outputs compute the wires' stresses from its N and M with Navier's "
+            "elastic formula: set [fatigue] outputs = false (or elastic_stresses = True in "
+            f"{name} if its stresses are those of a linear elastic round wire)"
+        )
+
+
 def build_problem(
     case: Case,
     stream=None,
@@ -135,8 +161,11 @@ def build_problem(
     one line about it on ``stream``, and before the finite-element mesh is built, a line on its
     size when it has more than ``LARGE_MESH`` elements. ``kind``: the case's set-up kind, as
     the run resolved it (None: resolved here, for a caller that starts from the case).
-    ``beam``: the wires' beam law, ``beam(w, section)`` (``StrandModel``)."""
+    ``beam``: the wires' beam law, ``beam(w, section)`` (``StrandModel``), refused before
+    anything is built where its class shows, else once built, by ``check_beam_law``."""
     kind = kind_of(case) if kind is None else kind
+    if _law_class(beam) is not None:
+        check_beam_law(case, _law_class(beam))
     keep_freed_memory()  # each LU factorisation reuses the last one's workspace
     geometry = build_geometry(
         case.cable,
@@ -153,6 +182,11 @@ def build_problem(
     options = newton_options(case)
     setup, programme = setup_and_programme(case, kind)
     problem = StrandProblem(geometry, case.contact, options, setup=setup, beam=beam)
+    try:
+        check_beam_law(case, problem.model.beam)
+    except CaseError:
+        problem.solver.destroy()
+        raise
     size = problem.model.comm.size
     print(
         f"{case.cable.name}: L = {case.mesh.length:g} m, {len(geometry.wire_layer)} wires, "

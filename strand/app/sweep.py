@@ -30,6 +30,7 @@ from .build import (
     setup_and_programme,
 )
 from .case import check_loads_given
+from .errors import CaseError
 from .folder import FolderError, check_results_folder, check_writable, writable_folder
 from .kinds import SetupKind, kind_of
 from .run_result import RunResult, Start
@@ -66,6 +67,12 @@ def run_sweep(
     problem, programme = build_problem(case, stream, kind=kind, beam=beam)
     results = []
     try:
+        if problem.solver.history:  # its members restore the tensioned state, not the law's
+            raise CaseError(
+                f"{case.source}: the beam law {type(problem.model.beam).__name__} has a state "
+                "of its own, which a sweep's members cannot restore: run each amplitude alone "
+                "(no [load] sweep)"
+            )
         top = on_root(lambda: _sweep_folder(folder, overwrite, case))  # once the strand is built
         folders = {key: results_folder(case, top / key, overwrite) for key in keys}
         tension = LoadProgramme(programme.stages[:1], parameter)

@@ -110,6 +110,12 @@ def restore(problem, checkpoint: Checkpoint) -> Position:
     """Put ``checkpoint``'s state into ``problem`` (every rank takes its points and pairs);
     returns the position to continue from, its predictor increments on this rank's blocks."""
     model, setup = problem.model, problem.setup
+    if problem.solver.history:
+        raise CheckpointError(
+            f"the beam law {type(model.beam).__name__} has a state of its own (its history), "
+            "which a checkpoint or a kept state does not hold: run it from the start, "
+            "without a restart or a [load] sweep"
+        )
     points = _block_points(model)
     w = checkpoint.w[points].ravel()
     model.w.x.array[:] = w

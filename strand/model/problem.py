@@ -57,7 +57,8 @@ class StrandProblem:
         comm: the ranks the strand is distributed over.
         monitor: called as ``monitor(iteration, residual_norm)`` at every Newton iteration.
         beam: the wires' beam law, ``beam(w, section)`` (``StrandModel``); default
-            ``ReissnerBeam``.
+            ``ReissnerBeam``. A history-dependent law's ``history`` (its state, e.g.
+            ``InternalVariables``) goes to ``solver``, committed once per converged step.
     """
 
     def __init__(
@@ -90,6 +91,7 @@ class StrandProblem:
             self.model.w,
             self.setup.bcs,
             terms=[*self.model.contact, *self.model.same_layer, *self.setup.terms],
+            history=list(getattr(self.model.beam, "history", ())),
             options=options,
             monitor=monitor,
         )

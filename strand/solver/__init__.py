@@ -14,15 +14,19 @@ it. It
   rows (as dolfinx's ``apply_lifting`` does for the forms),
 * decides convergence by PETSc's default rules, then strand's stall and balance tests
   (``NewtonOptions``: both off by default, on in strand's own runs), and
-* keeps the last converged state so that a failed step can be rolled back (``LoadStepper``).
+* keeps the last converged state so that a failed step can be rolled back (``LoadStepper``),
+  with the state of a history-dependent law (``history=``: ``HistoryState`` objects such as
+  ``InternalVariables``, a plastic curvature say), committed once per converged step.
 
-Modules: ``terms`` (the pair terms and their assembly), ``convergence`` (Newton's settings and
-tests), ``problem`` (``NonlinearProblem``), ``stepping`` (``LoadStepper`` and its records),
-``stabilisation`` (contact springs for a step that would not converge), ``interrupt`` (Ctrl-C), ``ordering`` (the MUMPS ordering that fills least), ``memory`` (freed
-memory kept for the next factorisation).
+Modules: ``terms`` (the pair terms and their assembly), ``history`` (the committed state of a
+history-dependent law), ``convergence`` (Newton's settings and tests), ``problem``
+(``NonlinearProblem``), ``stepping`` (``LoadStepper`` and its records), ``stabilisation``
+(contact springs for a step that would not converge), ``interrupt`` (Ctrl-C), ``ordering`` (the
+MUMPS ordering that fills least), ``memory`` (freed memory kept for the next factorisation).
 """
 
 from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
+from .history import HistoryState, InternalVariables
 from .interrupt import Interrupt
 from .memory import keep_freed_memory
 from .problem import NonlinearProblem
@@ -41,6 +45,8 @@ __all__ = [
     "NonlinearProblem",
     "PairTerms",
     "NodalLoad",
+    "HistoryState",
+    "InternalVariables",
     "NewtonOptions",
     "NewtonResult",
     "NewtonConvergence",

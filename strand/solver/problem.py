@@ -6,7 +6,8 @@ same arguments (``petsc_options_prefix``, ``petsc_options``), the same ``.solver
 extended by the pair stencils) and its own SNES callbacks, which add the pair terms
 (``strand.solver.terms``) to what dolfinx assembles. SNES decides convergence by PETSc's default
 rules, then the stall and balance tests (``strand.solver.convergence``). It also keeps the last
-converged state, so that a failed load step can be rolled back.
+converged state, so that a failed load step can be rolled back, with the pair terms' histories
+and the ``history`` states of a history-dependent law (``strand.solver.history``).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
+from .history import HistoryState
 from .interrupt import Interrupt
 from .terms import PairAssembler, PairTerms, create_extended_matrix
 
@@ -40,6 +42,9 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
             ``solve``.
         bcs: Dirichlet conditions on ``u.function_space``.
         terms: ``PairTerms`` objects (contact, links, nodal loads).
+        history: ``HistoryState`` objects, e.g. ``InternalVariables``: the state of a
+            history-dependent law (plastic curvatures), committed once per converged step
+            (``commit``) and restored by ``rollback``; they add nothing to the residual.
         J: Jacobian form; default ``ufl.derivative(F, u)``.
         options: ``NewtonOptions``: tolerances, line search, the stall and balance tests.
         petsc_options_prefix: options prefix of the SNES (and ``A_``, ``b_``, ``x_`` after it
@@ -58,6 +63,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         bcs: Sequence[fem.DirichletBC] | None = None,
         *,
         terms: Sequence[PairTerms] = (),
+        history: Sequence[HistoryState] = (),
         J: ufl.Form | None = None,
         options: NewtonOptions | None = None,
         petsc_options_prefix: str | None = None,
@@ -87,6 +93,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._P_mat = None
         self.bcs = list(bcs) if bcs is not None else []
         self.terms = list(terms)
+        self.history = list(history)
         self.options = options or NewtonOptions()
         self.monitor = monitor
         #: an ``Interrupt``: once requested, the current solve stops at its next residual
@@ -224,6 +231,8 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         if first.converged or newton or self.stop_requested():
             return first
         self._pairs.rollback()  # the pairs' state too (large sliding's segments) as it was
+        for state in self.history:  # and a law's, as the last commit left it
+            state.rollback()
         self._u.x.array[:] = start
         with self._newton():
             second = self._solve_once()
@@ -332,14 +341,20 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
 
     # -- load steps ------------------------------------------------------------------------------
     def commit(self) -> None:
-        """Accept the current state: it becomes the one ``rollback`` returns to."""
+        """Accept the current state: it becomes the one ``rollback`` returns to. Call it once
+        per converged step (``LoadStepper`` does): the pair terms and then the ``history``
+        states commit what they built since the last one, the latter reading the unknowns."""
         self._saved[:] = self._u.x.array
         self._pairs.commit()
+        for state in self.history:
+            state.commit()
 
     def rollback(self) -> None:
-        """Return to the last committed state (unknowns and term histories)."""
+        """Return to the last committed state (unknowns, term histories, ``history`` states)."""
         self._u.x.array[:] = self._saved
         self._pairs.rollback()
+        for state in self.history:
+            state.rollback()
 
     # -- PETSc objects ---------------------------------------------------------------------------
     def destroy(self) -> None:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -38,9 +39,14 @@ def _check_forms() -> None:
         spec = importlib.util.find_spec("forms")
     except (ImportError, ValueError):  # a module without a spec: leave it to the import
         return
-    if spec is None or spec.origin is None:  # none, or a bare folder: strand's comes first
-        return
     ours = Path(__file__).resolve().parent.parent / "forms"
+    if spec is None or ours.is_dir() and spec.origin is None and "forms" not in sys.modules:
+        # none, or a bare folder named forms (a namespace package, which an editable install's
+        # finder would let win over strand's): load strand's own under its name
+        _load_ours(ours)
+        return
+    if spec.origin is None:
+        return
     found = Path(spec.origin).resolve()
     if found != ours / "__init__.py":
         shadow = found.parent if found.name == "__init__.py" else found
@@ -48,6 +54,19 @@ def _check_forms() -> None:
             f"{shadow} shadows strand's beam forms (the package 'forms', {ours}): rename it, "
             f"e.g. to my_{shadow.name}, and import it under its new name"
         )
+
+
+def _load_ours(ours: Path) -> None:
+    """Import strand's package ``forms`` from ``ours`` (its folder) as ``forms``."""
+    init = ours / "__init__.py"
+    if not init.exists():
+        return
+    spec = importlib.util.spec_from_file_location(
+        "forms", init, submodule_search_locations=[str(ours)]
+    )
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["forms"] = module
+    spec.loader.exec_module(module)
 
 
 _check_forms()

@@ -354,8 +354,8 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
 
 
 def _unset_loads(data: dict, case: Case, kind: SetupKind) -> tuple[str, ...]:
-    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude, ``kind``'s
-    parameter, unless the cycle stays at zero or a sweep gives the amplitudes) that ``data``
+    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude,
+    ``kind.amplitude_settings``, unless the cycle stays at zero or a sweep gives the amplitudes) that ``data``
     leaves out, for a cable other than Cardinal, whose defaults they are."""
     spec = data.get("cable", "cardinal")
     if isinstance(spec, tuple):  # a cable edited on the command line: the loads of the one named
@@ -364,7 +364,7 @@ def _unset_loads(data: dict, case: Case, kind: SetupKind) -> tuple[str, ...]:
         return ()
     needed = ["tension"]
     if any(case.load.cycle) and not case.load.sweep:
-        needed.append(kind.parameter)
+        needed += kind.amplitude_settings(case)
     given = data.get("load", {})
     return tuple(k for k in needed if k not in given)
 

@@ -312,8 +312,11 @@ class Fairlead(SetupKind):
     def with_amplitude(self, case: Case, amplitude: float) -> Case:
         if self.parameter != "curvature":
             return super().with_amplitude(case, amplitude)
-        values = dict.fromkeys((*CURVATURE_INPUTS, "bend_length"), 0.0)
-        return replace(case, load=case.load.with_values(**values, bend_curvature=amplitude))
+        values = {
+            **dict.fromkeys((*CURVATURE_INPUTS, "bend_length"), 0.0),
+            "bend_curvature": amplitude,
+        }
+        return replace(case, load=case.load.with_values(**values))
 
     def step_sizes(self, steps) -> tuple[float, float]:
         """First and largest increment of the cycle's legs, from the shared ``[steps]``

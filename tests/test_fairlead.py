@@ -59,8 +59,9 @@ fields = false
 plots = false
 """
 
-#: stuck: μ = 5 and an elastic slip of 0.05 µm (penalty), crossings only; the curvature cycled
-#: to 0.05 1/m (a third of the slip onset κ_b = μ T sin α/(E A cos²α r) = 0.14 1/m) and back
+#: stuck: μ = 5 and an elastic slip of 0.05 µm (penalty), crossings only; bent to 0.05 1/m, then
+#: the curvature cycled 0.05 → 0.075 → 0.025 → 0.05 1/m (at most half the slip onset
+#: κ_b = μ T sin α/(E A cos²α r) = 0.14 1/m)
 STICK = FAIRLEAD.replace("MU", "5.0") + (
     '[contact]\nsame_layer = "off"\ncompliance = "penalty"\ng_lim = 5e-8\n'
 )
@@ -70,7 +71,9 @@ STICK_ARGS = [
     "--set",
     "load.bend_curvature=0.05",
     "--set",
-    "load.cycle=[1.0, 0.0]",
+    "load.curvature_swing=0.025",
+    "--set",
+    "load.cycle=[1.0, -1.0, 0.0]",
     "--set",
     "steps.curvature=0.025",
     "--set",
@@ -171,8 +174,8 @@ def test_the_closed_forms_are_the_hand_values():
 
 # -- the kind -----------------------------------------------------------------------------------
 def test_the_curvature_comes_one_way_and_the_programme_holds_it():
-    """κ from bend_curvature, 1/R or angle/length; tension cycled: tension → κ (held) → the
-    swing's legs; curvature cycled: tension → κ × cycle, the tension held."""
+    """κ from bend_curvature, 1/R or angle/length; tension → κ (held) → the legs of the swing:
+    of the tension about its mean, or of the curvature about κ, the tension held."""
     base = {"kind": "fairlead", "tension": 10e3, "cycle": [1.0, -1.0, 0.0]}
     for given, kappa in (
         ({"bend_curvature": 0.25}, 0.25),
@@ -186,21 +189,23 @@ def test_the_curvature_comes_one_way_and_the_programme_holds_it():
         assert [s.parameter for s in stages] == ["tension", "curvature"] + ["tension_swing"] * 3
         assert stages[1].target == pytest.approx(kappa, rel=1e-12)
         assert [s.target for s in stages[2:]] == [2e3, -2e3, 0.0]
-        bent = kind_of(case_from_dict({"load": {**base, **given, "cycled": "curvature"}}))
-        assert bent.parameter == "curvature" and bent.load_text(0.25) == "κ = 0.25 1/m"
-        stages = bent.programme(case_from_dict({"load": {**base, **given, "cycled": "curvature"}}))
-        assert [s.parameter for s in stages.stages] == ["tension"] + ["curvature"] * 3
-        assert [s.target for s in stages.stages[1:]] == pytest.approx([kappa, -kappa, 0.0])
-    # a sweep of curvatures replaces the input given by each amplitude
-    case = case_from_dict({"load": {**base, "bend_radius": 4.0, "cycled": "curvature"}})
-    member = kind_of(case).with_amplitude(case, 0.1)
-    assert (member.load.bend_curvature, member.load.bend_radius) == (0.1, 0.0)
-    assert kind_of(member).amplitude(member) == 0.1
+        swung = {**base, **given, "cycled": "curvature", "curvature_swing": 0.1}
+        case = case_from_dict({"load": swung})
+        kind = kind_of(case)
+        assert kind.parameter == "curvature_swing" and kind.load_text(0.1) == "Δκ = 0.1 1/m"
+        stages = kind.programme(case).stages
+        assert [s.parameter for s in stages] == ["tension", "curvature"] + ["curvature_swing"] * 3
+        assert stages[1].target == pytest.approx(kappa, rel=1e-12)
+        assert [s.target for s in stages[2:]] == pytest.approx([0.1, -0.1, 0.0])
+    # a sweep runs other swings about the same held curvature
+    member = kind.with_amplitude(case, 0.05)
+    assert (member.load.curvature_swing, kind.amplitude(member)) == (0.05, 0.05)
+    assert member.load.bend_angle == 30.0
 
 
-def test_a_cable_of_ones_own_is_asked_for_the_loads_the_kind_reads():
-    """On a cable other than Cardinal the tension, and with the tension cycled its swing, must
-    be given; a cycled curvature asks for nothing more (one of its inputs is required anyway)."""
+def test_a_cable_of_ones_own_is_asked_for_the_swing_it_cycles():
+    """On a cable other than Cardinal the tension and, with the tension cycled, its swing must be
+    given (Cardinal's 10 kN otherwise); a cycled curvature's swing has no default to fall on."""
     cable = {
         "core": {"diameter": D, "E": E_CORE, "nu": 0.3, "friction": 0.3},
         "layer": [
@@ -220,8 +225,8 @@ def test_a_cable_of_ones_own_is_asked_for_the_loads_the_kind_reads():
         "tension",
         "tension_swing",
     )
-    curvature = {**load, "cycled": "curvature", "tension": 1e4}
-    assert case_from_dict({"cable": cable, "load": curvature}).unset_loads == ()
+    swung = {**load, "cycled": "curvature", "curvature_swing": 0.05, "tension": 1e4}
+    assert case_from_dict({"cable": cable, "load": swung}).unset_loads == ()
 
 
 @pytest.mark.parametrize(
@@ -234,8 +239,13 @@ def test_a_cable_of_ones_own_is_asked_for_the_loads_the_kind_reads():
         ),
         ([], '[load] kind = "fairlead" needs the curvature: bend_curvature (1/m), bend_radius'),
         (["load.bend_radius=-5.0"], "[load] bend_radius = -5 m: expected a positive value"),
+        (["load.curvature_swing=-0.1"], "[load] curvature_swing = -0.1 1/m: expected a positive"),
         (["load.bend_angle=20.0"], "bend_angle = 20 deg and bend_length = 0 m go together"),
         (['load.cycled="angle"'], "[load] cycled = 'angle': expected \"tension\""),
+        (
+            ["load.bend_radius=5.0", 'load.cycled="curvature"'],
+            '[load] cycled = "curvature" needs [load] curvature_swing (1/m)',
+        ),
         (
             ["load.bend_radius=5.0", "load.tension_swing=12e3"],
             "tension_swing = 12000 N takes the end force down to -2000 N",
@@ -350,8 +360,8 @@ def recorded_against_closed(out: Path, state: str) -> dict[str, float]:
 #: was measured on 1 and 2 ranks alike
 TOLERANCES = {
     # measured: axial 0.059 (the layer takes 0.95 of the plane-section share: its wires spin on
-    # the core), core bending 0.0014, layer bending mean 0.024 (each element within −28/+12 %:
-    # the spin again), extremes 0.131 (other: 0.71)
+    # the core), core bending 0.0015, layer bending mean 0.025 (each element within −28/+12 %:
+    # the spin again), extremes 0.131 (other: 0.59)
     "stick": {"axial": 0.1, "core_bending": 0.01, "bending_mean": 0.05, "extremes": 0.15},
     # measured: axial 0.0012, core bending 0.0061, layer bending mean 0.0050 (each element
     # within ±5 %), extremes 0.054 (other: 0.68)
@@ -364,11 +374,12 @@ TOLERANCES = {
 @pytest.mark.parametrize("state", ["stick", "slip"])
 def test_the_recorded_wire_stresses_are_the_closed_forms_on_1_and_2_ranks(tmp_path, state):
     """The fairlead run's recorded wire stresses in the measuring zone against the closed forms
-    (docs/theory.md §5.7), on 1 and 2 ranks. Stuck (μ = 5, elastic slip 0.05 µm): the
-    curvature cycled to 0.05 1/m and back, no pair slipping; frictionless: held at R = 5 m
-    while the tension runs 10 → 12 → 8 → 10 kN, every step checked at its own tension. Each
-    run's surface extremes are far from the other state's closed form (``other``), so that the
-    check tells stick from slip; the two ranks' stresses agree to 1e-6."""
+    (docs/theory.md §5.7), on 1 and 2 ranks. Stuck (μ = 5, elastic slip 0.05 µm): bent to
+    0.05 1/m, the curvature cycled about it by ±0.025 1/m, no pair slipping; frictionless: held
+    at R = 5 m while the tension runs 10 → 12 → 8 → 10 kN; every step checked at its own
+    curvature and tension. Each run's surface extremes are at least three times the tolerance
+    from the other state's closed form (``other``), so that the check tells stick from slip;
+    the two ranks agree to 1e-6."""
     case, args = (STICK, STICK_ARGS) if state == "stick" else (SLIP, SLIP_ARGS)
     (tmp_path / "case.toml").write_text(case)
     measured = {}
@@ -378,10 +389,10 @@ def test_the_recorded_wire_stresses_are_the_closed_forms_on_1_and_2_ranks(tmp_pa
         assert done.returncode == 0, done.stderr[-3000:]
         worst = recorded_against_closed(out, state)
         print(ranks, worst)
-        assert worst["steps"] >= (2 if state == "stick" else 6)
+        assert worst["steps"] >= (4 if state == "stick" else 6)
         for key, limit in TOLERANCES[state].items():
             assert worst[key] <= limit, (ranks, key, worst)
-        assert worst["other"] > 0.5, worst
+        assert worst["other"] > 3 * TOLERANCES[state]["extremes"], worst
         if state == "stick":
             slipping = np.loadtxt(out / "slip.csv", delimiter=",", skiprows=1)[:, 2:]
             assert slipping.max() == 0.0

@@ -38,7 +38,8 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               #   a saddle load fixed_lateral (N) held at midspan
                               # fairlead: bent to bend_curvature (1/m), bend_radius (m) or
                               #   bend_angle (deg) over bend_length (m), held while the tension
-                              #   cycles by tension_swing, or cycled (cycled = "curvature")
+                              #   cycles by tension_swing (N), or (cycled = "curvature") the
+                              #   curvature cycles about it by curvature_swing (1/m)
     tension = 40e3            # N, end force, held during bending
     lateral = 4.3e3           # N, saddle load amplitude
     curvature = 0.5           # 1/m, bending: nominal curvature amplitude
@@ -357,8 +358,8 @@ def case_from_dict(data: dict, base: Path | None = None, source: str = "case") -
 
 
 def _unset_loads(data: dict, case: Case, kind: SetupKind) -> tuple[str, ...]:
-    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude,
-    ``kind.amplitude_settings``, unless the cycle stays at zero or a sweep gives the amplitudes) that ``data``
+    """The loads a run of ``case`` needs (the tension, and the cycle's amplitude, ``kind``'s
+    parameter, unless the cycle stays at zero or a sweep gives the amplitudes) that ``data``
     leaves out, for a cable other than Cardinal, whose defaults they are."""
     spec = data.get("cable", "cardinal")
     if isinstance(spec, tuple):  # a cable edited on the command line: the loads of the one named
@@ -367,7 +368,7 @@ def _unset_loads(data: dict, case: Case, kind: SetupKind) -> tuple[str, ...]:
         return ()
     needed = ["tension"]
     if any(case.load.cycle) and not case.load.sweep:
-        needed += kind.amplitude_settings(case)
+        needed.append(kind.parameter)
     given = data.get("load", {})
     return tuple(k for k in needed if k not in given)
 

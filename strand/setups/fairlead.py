@@ -7,8 +7,9 @@ with the waves. The set-up is ``UniformBendingTest``'s: the ends turn by ±κ_n 
 and a strut along the core carries the strand's tension as a follower compression, so that the
 strand is loaded by the end couples alone and its section moment is uniform, whatever the tension.
 Here the strut force is the mean ``tension`` plus a ``tension_swing`` (the parameters of the
-``tension_cycle`` kind), so that either the tension or the curvature can be cycled while the other
-is held. What it leaves out: the sheave's contact pressure on the strand's outer wires (the strut
+``tension_cycle`` kind), and the nominal curvature the held ``curvature`` plus a
+``curvature_swing``, so that either the tension or the curvature can be cycled about its mean
+while the other is held. What it leaves out: the sheave's contact pressure on the strand's outer wires (the strut
 applies the equilibrating transverse load T κ per unit length at the core instead). Units: m, N,
 N m, 1/m.
 """
@@ -30,7 +31,9 @@ class FairleadState:
     tension: float = quantity("N", "mean tension")
     tension_swing: float = quantity("N", "strand tension less the mean")
     end_force: float = quantity("N", "the strand's tension: tension + tension_swing")
-    curvature_nominal: float = quantity("1_per_m", "end rotations / (L/2)")
+    curvature_held: float = quantity("1_per_m", "the held (mean) nominal curvature")
+    curvature_swing: float = quantity("1_per_m", "nominal curvature less the held one")
+    curvature_nominal: float = quantity("1_per_m", "end rotations / (L/2): held + swing")
     curvature: float = quantity("1_per_m", "core curvature over the measuring zone")
     end_displacement: float = quantity("m", "displacement of the free end along its axis")
 
@@ -41,13 +44,18 @@ class FairleadState:
 
 class FairleadTest(UniformBendingTest):
     """The uniform bending test (``UniformBendingTest``: end rotations, core strut) whose strut
-    force, the strand's tension, is ``tension`` + ``tension_swing`` (N); ``curvature`` (1/m) is
-    the nominal curvature κ_n of the end rotations. Either may be cycled while the other is held:
-    ``cycle_parameter`` names the one ("tension_swing" or "curvature"). Other arguments: those
-    of ``UniformBendingTest`` (``zone``, ``direction``, ``link_stiffness``)."""
+    force, the strand's tension, is ``tension`` + ``tension_swing`` (N), and whose nominal
+    curvature κ_n (end rotations ±κ_n L/2) is ``curvature`` + ``curvature_swing`` (1/m). Either
+    swing may be cycled while the rest is held: ``cycle_parameter`` names it. Other arguments:
+    those of ``UniformBendingTest`` (``zone``, ``direction``, ``link_stiffness``)."""
 
-    parameters = ("tension", "curvature", "tension_swing")
-    units = {"tension": "N", "curvature": "1_per_m", "tension_swing": "N"}
+    parameters = ("tension", "curvature", "tension_swing", "curvature_swing")
+    units = {
+        "tension": "N",
+        "curvature": "1_per_m",
+        "tension_swing": "N",
+        "curvature_swing": "1_per_m",
+    }
     cycle_parameter = "tension_swing"
     state_type = FairleadState
 
@@ -61,36 +69,34 @@ class FairleadTest(UniformBendingTest):
         link_stiffness: float = 1e11,
     ):
         super().__init__(model, zone=zone, direction=direction, link_stiffness=link_stiffness)
-        if cycle_parameter not in ("tension_swing", "curvature"):
-            raise ValueError(f"cycle_parameter {cycle_parameter!r}: tension_swing or curvature")
+        if cycle_parameter not in ("tension_swing", "curvature_swing"):
+            raise ValueError(
+                f"cycle_parameter {cycle_parameter!r}: tension_swing or curvature_swing"
+            )
         self.cycle_parameter = cycle_parameter
-        self._tension = self._swing = 0.0
+        self.loads = dict.fromkeys(self.parameters, 0.0)
 
     def set(self, name: str, value: float) -> None:
         self.check_parameter(name)
-        if name == "curvature":
-            super().set(name, value)
-            return
-        if name == "tension":
-            self._tension = value
+        self.loads[name] = value
+        if name in ("tension", "tension_swing"):
+            self.strut.force = self.loads["tension"] + self.loads["tension_swing"]
         else:
-            self._swing = value
-        self.strut.force = self._tension + self._swing
+            super().set("curvature", self.loads["curvature"] + self.loads["curvature_swing"])
 
     def get(self, name: str) -> float:
         self.check_parameter(name)
-        if name == "tension":
-            return self._tension
-        if name == "tension_swing":
-            return self._swing
-        return super().get(name)
+        return self.loads[name]
 
     def state(self) -> FairleadState:
+        loads = self.loads
         return FairleadState(
-            self._tension,
-            self._swing,
+            loads["tension"],
+            loads["tension_swing"],
             self.strut.force,
-            self.get("curvature"),
+            loads["curvature"],
+            loads["curvature_swing"],
+            self._curvature,
             self.zone_curvature(),
             self.end_displacement(),
         )

@@ -104,12 +104,6 @@ class SetupKind(ABC):
     def setup(self, case: Case) -> Callable:
         """The test set-up factory: takes the ``StrandModel``, returns a ``TestSetup``."""
 
-    def amplitude_settings(self, case: Case) -> tuple[str, ...]:
-        """The ``[load]`` settings that give the cycle's amplitude, which a case of a cable of
-        its own must give rather than leave at Cardinal's defaults (``case.check_loads_given``):
-        the parameter's own by default."""
-        return (self.parameter,)
-
     def amplitude(self, case: Case) -> float:
         """The amplitude the cycle targets multiply (the parameter's unit)."""
         return getattr(self.load(case), self.parameter)

@@ -1,33 +1,38 @@
 """Bending at a fairlead as a set-up kind (``[load] kind = "fairlead"``): the strand under its
 tension, bent to the curvature of a fairlead sheave or a bend stiffener and held there while the
-tension cycles, or with the tension held while the curvature cycles: a mooring line where it
-leaves the floater.
+tension cycles about its mean, or while the curvature cycles about the held one: a mooring line
+where it leaves the floater.
 
 The set-up is ``strand.setups.fairlead.FairleadTest``: the uniform bending test (ends turned by
 ±κ L/2, a core strut carrying the tension, so that the section moment is uniform) whose tension is
-the mean plus a swing. Its own settings, ``[load]``:
+a mean plus a swing, and whose curvature is a held one plus a swing. Its own settings, ``[load]``:
 
-- the curvature κ of the strand's axis, in exactly one way: ``bend_curvature`` (1/m),
+- the held curvature κ of the strand's axis, in exactly one way: ``bend_curvature`` (1/m),
   ``bend_radius`` (m, the radius R of the axis over the sheave or in the stiffener: κ = 1/R), or
   ``bend_angle`` (deg) over ``bend_length`` (m): the mean curvature of a line that turns through
   that angle over that length;
-- ``cycled``: "tension" (default: tension → κ, held → the end force over ``[load] tension`` +
-  ``cycle`` × ``tension_swing``) or "curvature" (tension, held → κ × ``cycle``).
+- ``cycled``: "tension" (default: the end force over ``[load] tension`` + ``cycle`` ×
+  ``tension_swing``, κ held) or "curvature" (the curvature over κ + ``cycle`` ×
+  ``curvature_swing``, the tension held);
+- ``curvature_swing`` (1/m): the curvature's amplitude about κ when it is cycled.
 
-It shares the others' settings where they mean the same: ``[load] tension_swing`` (N) of the
-``tension_cycle`` kind, ``zone`` (m, the central measuring zone) of the ``bending`` kind, and
-their ``[steps]`` ``tension_swing``, ``tension_swing_max`` (N), ``curvature``, ``curvature_max``
-(1/m). Its reference: the wire stresses of the bent strand in full stick and in full slip
+The programme: the tension, then κ (held), then the swing's legs; the fatigue histories start at
+the bent state, so that a steady repetition of the cycle counts the swings about it, not the
+bending from straight. The kind shares the others' settings where they mean the same: ``[load]
+tension_swing`` (N) of the ``tension_cycle`` kind, ``zone`` (m, the central measuring zone) of the
+``bending`` kind, and their ``[steps]`` ``tension_swing``, ``tension_swing_max`` (N) and
+``curvature``, ``curvature_max`` (1/m: the ramp to κ and the curvature's legs). Its reference:
+the wire stresses of the bent strand in full stick and in full slip
 (``analytical.bent_wire_stresses``, docs/theory.md §5.7) beside the model's in the zone at the
-held curvature; with the tension cycled, the wires' stress change at the largest swing beside the
-fibre model's; with the curvature cycled, the uniform bending report (M–κ beside the stick–slip
-law) and its figure. Units: m, N, Pa, 1/m; angles in degrees in the settings.
+held state and at the largest swing; with the tension cycled, the wires' stress change over the
+swing beside the fibre model's; with the curvature cycled, the zone's M–κ figure. Units: m, N,
+Pa, 1/m; angles in degrees in the settings.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 from typing import ClassVar
@@ -41,13 +46,15 @@ from ...model.post import fibre_model, harmonic_fit
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ..errors import CaseError
 from ..settings import Case
-from .base import SetupKind, tension_stage, tension_then_cycle
-from .bending import BendingReport, bending_figure, bending_lines, uniform_bending_report
+from .base import SetupKind, tension_stage
+from .bending import bending_figure
 
 __all__ = [
     "Fairlead",
     "FairleadLoad",
     "FairleadReport",
+    "BentState",
+    "bent_state",
     "LayerStresses",
     "zone_stresses",
     "held_curvature",
@@ -65,7 +72,7 @@ CURVATURE_INPUTS = {"bend_curvature": "1/m", "bend_radius": "m", "bend_angle": "
 #: full slip on a 1+6, a factor 3.9 where the frictionless core snakes)
 CORE_BENDING_SHARE = 0.1
 #: what the cycle varies → the set-up's load parameter
-CYCLED = {"tension": "tension_swing", "curvature": "curvature"}
+CYCLED = {"tension": "tension_swing", "curvature": "curvature_swing"}
 
 
 @dataclass(frozen=True)
@@ -82,7 +89,10 @@ class FairleadLoad:
             length, the mean curvature (a bend stiffener's peak is higher); 0: given otherwise.
         bend_length: the length over which ``bend_angle`` is turned, m.
         cycled: what the cycle varies: "tension" (the end force over [load] tension + cycle ×
-            tension_swing, the curvature held) or "curvature" (cycle × κ, the tension held).
+            tension_swing, the curvature held) or "curvature" (κ + cycle × curvature_swing,
+            the tension held).
+        curvature_swing: the curvature's amplitude about κ when it is cycled, 1/m (a line
+            whose angle at the fairlead swings: its curvature there swings with it).
     """
 
     bend_curvature: float = 0.0  # 1/m
@@ -90,12 +100,14 @@ class FairleadLoad:
     bend_angle: float = 0.0  # deg
     bend_length: float = 0.0  # m
     cycled: str = "tension"  # "tension" or "curvature"
+    curvature_swing: float = 0.0  # 1/m
 
     UNITS: ClassVar[dict[str, str]] = {
         "bend_curvature": "1/m",
         "bend_radius": "m",
         "bend_angle": "deg",
         "bend_length": "m",
+        "curvature_swing": "1/m",
     }
 
 
@@ -169,23 +181,16 @@ def zone_stresses(
 
 
 @dataclass(frozen=True, kw_only=True)
-class FairleadReport:
-    """The fairlead run beside its closed forms.
+class BentState:
+    """One state of the fairlead run beside its closed forms.
 
     Attributes:
-        step: the step of the held state (the end of the curvature ramp with the tension cycled,
-            the largest curvature with the curvature cycled).
+        step: its step number.
         tension: the strand's tension there, N.
         nominal, curvature: the nominal (end rotations) and the zone's measured curvature, 1/m.
-        model: the model's wire stresses in the zone there (``LayerStresses``).
+        model: the model's wire stresses in the zone (``LayerStresses``).
         stick, slip: the closed forms at the zone's curvature and that tension
             (``analytical.BentWireStresses``).
-        swing: with the tension cycled, the largest swing reached, N (0 otherwise).
-        swing_change: per layer, the zone's mean axial stress change from the held state to
-            the largest swing, Pa (empty without).
-        swing_fibre: the fibre model's E cos²α ΔT/EA for that swing, Pa.
-        bending: with the curvature cycled, the uniform bending report (M–κ beside the
-            stick–slip law; None otherwise).
     """
 
     step: int
@@ -195,52 +200,120 @@ class FairleadReport:
     model: LayerStresses
     stick: BentWireStresses
     slip: BentWireStresses
-    swing: float = 0.0
+
+
+@dataclass(frozen=True, kw_only=True)
+class FairleadReport:
+    """The fairlead run beside its closed forms: the held state (the end of the ramp to κ) and
+    the state at the largest swing (None before the cycle), and, with the tension cycled, the
+    zone's mean axial stress change per layer between them (Pa) beside the fibre model's
+    E cos²α ΔT/EA (empty arrays otherwise)."""
+
+    held: BentState
+    peak: BentState | None = None
     swing_change: Array = field(default_factory=lambda: np.zeros(0))
     swing_fibre: Array = field(default_factory=lambda: np.zeros(0))
-    bending: BendingReport | None = None
+
+
+def bent_state(case: Case, step, cells) -> BentState:
+    """The ``BentState`` of the run step ``step`` (a ``RunStep`` of the fairlead set-up) whose
+    cell results are ``cells``."""
+    L, zone = case.mesh.length, case.load.zone
+    tension, kappa = step.state.end_force, step.state.curvature
+    closed = {
+        state: bent_wire_stresses(case.cable, tension, kappa, state, friction=case.contact.friction)
+        for state in ("stick", "slip")
+    }
+    return BentState(
+        step=step.number,
+        tension=tension,
+        nominal=step.state.curvature_nominal,
+        curvature=kappa,
+        model=zone_stresses(
+            case.cable, cells, (L / 2 - zone / 2, L / 2 + zone / 2), case.load.direction
+        ),
+        **closed,
+    )
+
+
+def state_lines(title: str, r: BentState, friction: bool) -> list[str]:
+    """The summary's table of one state's wire stresses beside the closed forms."""
+    m, k, s = r.model, r.stick, r.slip
+    change = f" ({100 * (r.curvature / r.nominal - 1):+.1f} %)" if r.nominal else ""
+    how = "with the cable's friction" if friction else "frictionless"
+    lines = [
+        f"  {title}, step {r.step}: tension {r.tension / 1e3:.4g} kN, curvature nominal "
+        f"{r.nominal:.4g} 1/m, zone {r.curvature:.4g} 1/m{change}",
+        f"    wire stresses in the zone (MPa), model / full stick / full slip ({how}; "
+        "docs/theory.md §5.7) at the zone's curvature:",
+        "    layer     σ_T (mean axial)          axial sin φ amplitude     own bending (mean)"
+        "        largest surface",
+    ]
+    for i in range(len(m.peak)):
+        name = "core" if i == 0 else f"layer {i}"
+        columns = [
+            (m.tension_stress[i], k.tension_stress[i], s.tension_stress[i]),
+            (m.amplitude[i], k.sine_amplitude[i], s.sine_amplitude[i]),
+            (m.bending[i], k.bending[i], s.bending[i]),
+            (m.peak[i], k.largest[i], s.largest[i]),
+        ]
+        text = "  ".join(f"{a / 1e6:7.1f} /{b / 1e6:7.1f} /{c / 1e6:7.1f}" for a, b, c in columns)
+        lines.append(f"    {name:8s}  {text}")
+    spread = ", ".join(
+        f"{'core' if i == 0 else f'layer {i}'} {100 * d / b:.0f} %"
+        for i, (d, b) in enumerate(zip(m.bending_spread, m.bending, strict=True))
+    )
+    lines.append(
+        f"    own bending's spread over the zone (max − min over mean): {spread} (the wires "
+        "spin on their neighbours, which the closed forms leave out)"
+    )
+    core = m.bending[0] / k.bending[0] if k.bending[0] else 1.0
+    if not abs(core - 1) <= CORE_BENDING_SHARE:
+        lines.append(
+            f"    warning: the core's own bending in the zone is {core:.2f} × E κ d/2 at the "
+            "zone's curvature: the core does not follow the strand's axis (frictionless with "
+            '[contact] same_layer = "off", the frozen normals let it snake inside its layer: '
+            "docs/mooring.md), and the wire stresses are not the strand's"
+        )
+    return lines
 
 
 class Fairlead(SetupKind):
-    """Bending at a fairlead: tension, the curvature held while the tension cycles, or the
-    curvature cycled under the tension (``cycled``)."""
+    """Bending at a fairlead: tension, then the curvature κ held while the tension cycles about
+    its mean, or while the curvature cycles about κ (``cycled``)."""
 
     name = "fairlead"
-    unit = "N"
     load_settings = FairleadLoad
-    signed = frozenset({*CURVATURE_INPUTS, "bend_length"})  # checked here: ≥ 0
+    signed = frozenset({*CURVATURE_INPUTS, "bend_length", "curvature_swing"})  # here: ≥ 0
     clamp = False  # Poffenberger–Swart's clamp is not a fairlead's
 
     def __init__(self, cycled: str = "tension"):
         self.cycled = cycled
         self.parameter = CYCLED.get(cycled, "tension_swing")
-        if self.parameter == "curvature":
-            self.unit, self.progress_unit, self.symbol, self.measure = (
-                "1/m",
-                ("1/m", 1.0),
-                "κ",
-                "curvature",
-            )
+        if self.parameter == "curvature_swing":
+            self.unit, self.progress_unit, self.symbol = "1/m", ("1/m", 1.0), "Δκ"
+            self.measure = "curvature"
         else:
             self.unit, self.progress_unit, self.symbol = "N", ("kN", 1e3), "ΔT"
             self.measure = "end_displacement"
 
     def load_text(self, value: float) -> str:
-        if self.parameter == "curvature":
-            return f"κ = {value:.3g} 1/m"
+        if self.parameter == "curvature_swing":
+            return f"Δκ = {value:.3g} 1/m"
         return super().load_text(value)
 
     # -- settings ----------------------------------------------------------------------------------
     def check_settings(self, load: FairleadLoad, steps) -> None:
         """Its own settings alone, in a case of any kind: no negative curvature input, a known
         ``cycled`` (the shared steps are checked by their own kinds)."""
-        for key in (*CURVATURE_INPUTS, "bend_length"):
+        for key in (*CURVATURE_INPUTS, "bend_length", "curvature_swing"):
             value = getattr(load, key)
             if value < 0:
                 unit = FairleadLoad.UNITS[key]
                 raise CaseError(
                     f"[load] {key} = {value:g} {unit}: expected a positive value (the bending "
-                    "direction is [load] direction), or 0 for none"
+                    "direction is [load] direction, the cycle gives the swing's signs), or 0 "
+                    "for none"
                 )
         if load.cycled not in CYCLED:
             raise CaseError(
@@ -250,7 +323,7 @@ class Fairlead(SetupKind):
 
     def check_case(self, case: Case) -> None:
         """Exactly one curvature input; the zone shorter than the strand; a tension cycle that
-        keeps the strand in tension."""
+        keeps the strand in tension, or a curvature swing to cycle."""
         own, load = self.load(case), case.load
         if (own.bend_angle > 0) != (own.bend_length > 0):
             raise CaseError(
@@ -274,6 +347,11 @@ class Fairlead(SetupKind):
             raise CaseError(
                 f"[load] zone = {zone} m must be shorter than [mesh] length = {length} m"
             )
+        if own.cycled == "curvature" and not own.curvature_swing > 0:
+            raise CaseError(
+                '[load] cycled = "curvature" needs [load] curvature_swing (1/m), the '
+                "curvature's amplitude about the held one"
+            )
         if own.cycled == "tension":
             lowest = load.tension + load.tension_swing * min(0.0, *load.cycle)
             if lowest <= 0:
@@ -288,11 +366,6 @@ class Fairlead(SetupKind):
         cycled = self.load(case).cycled
         return self if cycled == self.cycled else Fairlead(cycled)
 
-    def amplitude_settings(self, case: Case) -> tuple[str, ...]:
-        """The swing when the tension is cycled; none when the curvature is (``check_case``
-        requires one of its inputs)."""
-        return ("tension_swing",) if self.parameter == "tension_swing" else ()
-
     # -- the run -----------------------------------------------------------------------------------
     def setup(self, case: Case):
         from ...setups.fairlead import FairleadTest
@@ -305,31 +378,21 @@ class Fairlead(SetupKind):
         )
 
     def amplitude(self, case: Case) -> float:
-        if self.parameter == "curvature":
-            return held_curvature(self.load(case))
-        return case.load.tension_swing
-
-    def with_amplitude(self, case: Case, amplitude: float) -> Case:
-        if self.parameter != "curvature":
-            return super().with_amplitude(case, amplitude)
-        values = {
-            **dict.fromkeys((*CURVATURE_INPUTS, "bend_length"), 0.0),
-            "bend_curvature": amplitude,
-        }
-        return replace(case, load=case.load.with_values(**values))
+        """The swing the cycle's targets multiply: ``tension_swing`` (N) or
+        ``curvature_swing`` (1/m)."""
+        return getattr(case.load, self.parameter)
 
     def step_sizes(self, steps) -> tuple[float, float]:
         """First and largest increment of the cycle's legs, from the shared ``[steps]``
-        (``steps``: the case's ``StepSettings``)."""
-        return getattr(steps, self.parameter), getattr(steps, f"{self.parameter}_max")
+        (``steps``: the case's ``StepSettings``): ``tension_swing``, ``tension_swing_max`` (N),
+        or ``curvature``, ``curvature_max`` (1/m)."""
+        name = "tension_swing" if self.parameter == "tension_swing" else "curvature"
+        return getattr(steps, name), getattr(steps, f"{name}_max")
 
     def programme(self, case: Case) -> LoadProgramme:
-        """The tension, then the curvature's cycle; or the tension, the curvature held, then the
-        swing's cycle."""
+        """The tension, the curvature κ (held), then the legs of the swing."""
         steps = case.steps
         first, largest = self.step_sizes(steps)
-        if self.parameter == "curvature":
-            return tension_then_cycle(case, "curvature", self.amplitude(case), first, largest)
         bend = Stage(
             "curvature",
             "curvature",
@@ -354,51 +417,28 @@ class Fairlead(SetupKind):
 
     # -- results -----------------------------------------------------------------------------------
     def reference(self, case: Case, result) -> FairleadReport | None:
-        """The held state's wire stresses in the zone beside the closed forms in full stick
-        and full slip at the zone's curvature; the swing's stress change beside the fibre
-        model, or the uniform bending report."""
-        if self.parameter == "curvature":
-            held, cells = result.peak_step, result.peak
-        else:
-            bent = [s for s in result.steps if s.parameter == "curvature"]
-            held, cells = (bent[-1] if bent else None), result.tensioned
-        if held is None or cells is None or held.state.curvature == 0:
+        """The held state's and the largest swing's wire stresses in the zone beside the closed
+        forms in full stick and full slip at the zone's curvature; with the tension cycled, the
+        swing's stress change beside the fibre model."""
+        bent = [s for s in result.steps if s.parameter == "curvature"]
+        if not bent or result.tensioned is None or bent[-1].state.curvature == 0:
             return None
-        L, zone = case.mesh.length, case.load.zone
-        span = (L / 2 - zone / 2, L / 2 + zone / 2)
-        tension, kappa = held.state.end_force, held.state.curvature
-        closed = {
-            state: bent_wire_stresses(
-                case.cable, tension, kappa, state, friction=case.contact.friction
-            )
-            for state in ("stick", "slip")
-        }
-        report = FairleadReport(
-            step=held.number,
-            tension=tension,
-            nominal=held.state.curvature_nominal,
-            curvature=kappa,
-            model=zone_stresses(case.cable, cells, span, case.load.direction),
-            **closed,
-        )
-        if self.parameter == "curvature":
-            bending = uniform_bending_report(
-                case.cable, case.load.tension, result.bending, result.slip
-            )
-            return replace(report, bending=bending)
-        peak = result.peak_step
-        if peak is None or result.peak is None or peak.state.tension_swing == 0:
-            return report
-        base, top = (
-            zone_stresses(case.cable, c, span, case.load.direction).tension_stress
-            for c in (cells, result.peak)
-        )
-        swing = peak.state.tension_swing
+        held = bent_state(case, bent[-1], result.tensioned)
+        top = result.peak_step
+        if top is None or result.peak is None or top.load == 0:
+            return FairleadReport(held=held)
+        peak = bent_state(case, top, result.peak)
+        if self.parameter != "tension_swing":
+            return FairleadReport(held=held, peak=peak)
         ea = fibre_model(case.cable, 1.0)["EA"]
-        fibre = np.array(
-            [lay.wire.E * np.cos(lay.alpha) ** 2 * swing / ea for lay in case.cable.layers]
+        return FairleadReport(
+            held=held,
+            peak=peak,
+            swing_change=peak.model.tension_stress - held.model.tension_stress,
+            swing_fibre=np.array(
+                [lay.wire.E * np.cos(lay.alpha) ** 2 * top.load / ea for lay in case.cable.layers]
+            ),
         )
-        return replace(report, swing=swing, swing_change=top - base, swing_fibre=fibre)
 
     def summary_lines(self, case: Case, result) -> list[str]:
         r = result.reference
@@ -406,68 +446,35 @@ class Fairlead(SetupKind):
             return []
         own = self.load(case)
         given = _curvature_text(own)
-        if self.parameter == "curvature":
-            cycle = f"curvature cycled × {list(case.load.cycle)}, tension held"
+        cycle = list(case.load.cycle)
+        if self.parameter == "curvature_swing":
+            what = f"curvature cycled κ + {cycle} × {own.curvature_swing:g} 1/m, tension held"
         else:
-            cycle = (
-                f"tension cycled {case.load.tension / 1e3:g} kN + {list(case.load.cycle)} × "
+            what = (
+                f"tension cycled {case.load.tension / 1e3:g} kN + {cycle} × "
                 f"{case.load.tension_swing / 1e3:g} kN, curvature held"
             )
-        friction = "with the cable's friction" if case.contact.friction else "frictionless"
+        friction = case.contact.friction
         lines = [
-            f"fairlead: κ = {held_curvature(own):.4g} 1/m{f' ({given})' if given else ''}; {cycle}",
-            f"  at step {r.step} (tension {r.tension / 1e3:.4g} kN): curvature nominal "
-            f"{r.nominal:.4g} 1/m, zone {r.curvature:.4g} 1/m "
-            f"({100 * (r.curvature / r.nominal - 1):+.1f} %)",
-            "  wire stresses in the zone (MPa), model / full stick / full slip "
-            f"({friction}; docs/theory.md §5.7) at the zone's curvature:",
-            "    layer     σ_T (mean axial)          axial sin φ amplitude     own bending "
-            "(mean)        largest surface",
+            f"fairlead: κ = {held_curvature(own):.4g} 1/m{f' ({given})' if given else ''}; {what}",
+            *state_lines("held", r.held, friction),
         ]
-        m, k, s = r.model, r.stick, r.slip
-        for i in range(len(case.cable.layers)):
-            name = "core" if i == 0 else f"layer {i}"
-            columns = [
-                (m.tension_stress[i], k.tension_stress[i], s.tension_stress[i]),
-                (m.amplitude[i], k.sine_amplitude[i], s.sine_amplitude[i]),
-                (m.bending[i], k.bending[i], s.bending[i]),
-                (m.peak[i], k.largest[i], s.largest[i]),
-            ]
-            text = "  ".join(
-                f"{a / 1e6:7.1f} /{b / 1e6:7.1f} /{c / 1e6:7.1f}" for a, b, c in columns
-            )
-            lines.append(f"    {name:8s}  {text}")
-        spread = ", ".join(
-            f"{'core' if i == 0 else f'layer {i}'} {100 * d / b:.0f} %"
-            for i, (d, b) in enumerate(zip(m.bending_spread, m.bending, strict=True))
-        )
-        lines.append(
-            f"  own bending's spread over the zone (max − min over mean): {spread} (the wires "
-            "spin on their neighbours, which the closed forms leave out)"
-        )
-        core = m.bending[0] / k.bending[0]
-        if not abs(core - 1) <= CORE_BENDING_SHARE:
-            lines.append(
-                f"  warning: the core's own bending in the zone is {core:.2f} × E κ d/2 at the "
-                "zone's curvature: the core does not follow the strand's axis (frictionless with "
-                '[contact] same_layer = "off", the frozen normals let it snake inside its layer: '
-                "docs/mooring.md), and the wire stresses are not the strand's"
-            )
+        if r.peak is not None:
+            label = self.load_text(result.peak_step.load)
+            lines += state_lines(f"at the largest swing {label}", r.peak, friction)
         if len(r.swing_change):
             parts = ", ".join(
                 f"{'core' if i == 0 else f'layer {i}'} {a / 1e6:+.2f} / {b / 1e6:+.2f}"
                 for i, (a, b) in enumerate(zip(r.swing_change, r.swing_fibre, strict=True))
             )
             lines.append(
-                f"  at the largest swing {r.swing / 1e3:+.4g} kN, the zone's mean axial stress "
-                f"change (MPa), model / fibre model E cos²α ΔT/EA: {parts}"
+                "  the zone's mean axial stress change from the held state to the largest swing "
+                f"(MPa), model / fibre model E cos²α ΔT/EA: {parts}"
             )
-        if r.bending is not None:
-            lines += bending_lines(case.load.zone, r.bending)
         return lines
 
     def figures(self, case: Case, result, note: str = "") -> list[Path]:
-        """With the curvature cycled, the uniform bending test's M–κ figure."""
-        if self.parameter != "curvature" or not result.bending:
+        """With the curvature cycled, the zone's M–κ loop (the uniform bending test's figure)."""
+        if self.parameter != "curvature_swing" or not result.bending:
             return []
         return [bending_figure(case, result, note)]

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from strand.analytical import bent_wire_stresses, triangle
-from strand.app.case import case_from_dict, load_case
+from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
 from strand.app.kinds import kind_of
 from strand.cable.description import cable_from_dict
@@ -197,6 +197,12 @@ def test_the_curvature_comes_one_way_and_the_programme_holds_it():
         assert [s.parameter for s in stages] == ["tension", "curvature"] + ["curvature_swing"] * 3
         assert stages[1].target == pytest.approx(kappa, rel=1e-12)
         assert [s.target for s in stages[2:]] == pytest.approx([0.1, -0.1, 0.0])
+    # the default case is refused (no curvature); with the kind's example it reads (the docs'
+    # tables are built from it)
+    with pytest.raises(CaseError, match="needs the curvature"):
+        load_case(settings=['load.kind="fairlead"'])
+    example = load_case(settings=['load.kind="fairlead"', *kind.example])
+    assert kind_of(example).programme(example).stages[1].target == pytest.approx(0.2)
     # a sweep runs other swings about the same held curvature
     member = kind.with_amplitude(case, 0.05)
     assert (member.load.curvature_swing, kind.amplitude(member)) == (0.05, 0.05)

@@ -9,7 +9,7 @@ the neutral axis of bending (φ = +90° the fibre stretched by a positive curvat
 * **axial stress**, full stick (plane sections, §5.3): σ_N = σ_T + E cos²α κ r sin φ;
   full slip: σ_N = σ_T + (f/A) tri(φ), where friction lets a slipped wire's tension change by
   f per radian of φ from the neutral axis (§5.4; ``StickSlipLaw``'s f), tri(φ) = φ on
-  |φ| ≤ π/2 and π − φ, −π − φ beyond (the quarter turns meet at the extreme fibres); without
+  abs(φ) ≤ π/2 and π − φ, −π − φ beyond (the quarter turns meet at the extreme fibres); without
   friction f = 0 and σ_N = σ_T;
 * **the wire's own bending** (both states): its centre line follows the bent strand, and
   d²x/ds² gains the axis's curvature times (dz/ds)² = cos²α, so the wire bends by

@@ -135,8 +135,8 @@ def _curvature_text(load: FairleadLoad) -> str:
 class LayerStresses:
     """The model's wire stresses per layer (0 = core) over the measuring zone's elements at one
     state, Pa: the axial stress N/A fitted against φ as mean + amplitude sin φ (+ b cos φ; the
-    core: its mean, no amplitude), the wire's own bending stress |M| r/I (its mean and its
-    spread, max − min), and the largest surface stress N/A + |M| r/I."""
+    core: its mean, no amplitude), the wire's own bending stress abs(M) r/I (its mean and its
+    spread, max − min), and the largest surface stress N/A + abs(M) r/I."""
 
     tension_stress: Array
     amplitude: Array
@@ -286,6 +286,7 @@ class Fairlead(SetupKind):
     load_settings = FairleadLoad
     signed = frozenset({*CURVATURE_INPUTS, "bend_length", "curvature_swing"})  # here: ≥ 0
     clamp = False  # Poffenberger–Swart's clamp is not a fairlead's
+    example = ("load.bend_radius=5.0",)  # the curvature has no default
 
     def __init__(self, cycled: str = "tension"):
         self.cycled = cycled

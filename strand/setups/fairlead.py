@@ -24,7 +24,7 @@ from .bending import UniformBendingTest
 __all__ = ["FairleadTest", "FairleadState"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FairleadState:
     """Loads and measures of the fairlead test at one state."""
 
@@ -91,12 +91,12 @@ class FairleadTest(UniformBendingTest):
     def state(self) -> FairleadState:
         loads = self.loads
         return FairleadState(
-            loads["tension"],
-            loads["tension_swing"],
-            self.strut.force,
-            loads["curvature"],
-            loads["curvature_swing"],
-            self._curvature,
-            self.zone_curvature(),
-            self.end_displacement(),
+            tension=loads["tension"],
+            tension_swing=loads["tension_swing"],
+            end_force=self.strut.force,
+            curvature_held=loads["curvature"],
+            curvature_swing=loads["curvature_swing"],
+            curvature_nominal=self._curvature,
+            curvature=self.zone_curvature(),
+            end_displacement=self.end_displacement(),
         )

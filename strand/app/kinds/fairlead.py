@@ -75,7 +75,7 @@ CORE_BENDING_SHARE = 0.1
 CYCLED = {"tension": "tension_swing", "curvature": "curvature_swing"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FairleadLoad:
     """``[load]`` settings of the fairlead test.
 

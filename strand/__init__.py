@@ -165,6 +165,7 @@ _API = {
     "SaddleTest": "strand.setups",
     "UniformBendingTest": "strand.setups",
     "TensionCycleTest": "strand.setups.tension_cycle",
+    "FairleadTest": "strand.setups.fairlead",
 }
 
 __all__ = ["__version__", *_API]
@@ -251,6 +252,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .setups import SaddleTest as SaddleTest
     from .setups import TestSetup as TestSetup
     from .setups import UniformBendingTest as UniformBendingTest
+    from .setups.fairlead import FairleadTest as FairleadTest
     from .setups.tension_cycle import TensionCycleTest as TensionCycleTest
     from .solver import ErrorControl as ErrorControl
     from .solver import HistoryState as HistoryState

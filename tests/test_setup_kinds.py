@@ -228,7 +228,7 @@ def test_an_unknown_kind_is_refused_in_one_line_naming_the_known_ones(seven, tmp
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "Traceback" not in err[0]
     assert err[0].endswith(
-        "[load] kind = 'twist' is unknown; choose saddle, bending or tension_cycle"
+        "[load] kind = 'twist' is unknown; choose saddle, bending, tension_cycle or fairlead"
     )
     assert not out.exists()
 

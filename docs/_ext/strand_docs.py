@@ -106,7 +106,7 @@ def kind_columns() -> str:
 
     out = []
     for kind in kinds.registered():
-        case = load_case(settings=[f'load.kind="{kind.name}"'])
+        case = load_case(settings=[f'load.kind="{kind.name}"', *kind.example])
         setup = kind.setup(case).func
         out += [
             f'**`kind = "{kind.name}"`** (`{setup.__module__}.{setup.__name__}`):',

@@ -5,6 +5,8 @@
 * ``rolling``: the stick slope when wires may roll on stuck point ties, and what a Hertz patch
   offers against rolling and drilling;
 * ``beam``: the strand as one tensioned beam (midspan load, Poffenberger–Swart);
+* ``bent_wires``: the wire stresses of a bent strand under tension in full stick and in full
+  slip (the ``fairlead`` kind's closed-form check);
 * ``costello``: Costello's axial–torsional stiffness of a straight strand, and its torque
   under tension with the ends held against rotation;
 * ``fibre``: the fibre model of a strand under tension, and the bounds of its bending
@@ -12,6 +14,7 @@
 """
 
 from .beam import POFFENBERGER_SWART_DISTANCE, TensionedBeam, clamped_deflection, poffenberger_swart
+from .bent_wires import BENT_STATES, BentWireStresses, bent_wire_stresses, triangle
 from .costello import costello_stiffness, held_end_torque
 from .fibre import bending_stiffness_bounds, fibre_model
 from .rolling import ContactPatch, StickEstimate, contact_patch, stick_bending_estimate
@@ -27,6 +30,10 @@ __all__ = [
     "clamped_deflection",
     "POFFENBERGER_SWART_DISTANCE",
     "poffenberger_swart",
+    "BENT_STATES",
+    "BentWireStresses",
+    "bent_wire_stresses",
+    "triangle",
     "costello_stiffness",
     "held_end_torque",
     "fibre_model",

@@ -36,6 +36,10 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
                               # bending: uniform bending by end rotations (the section's M–κ)
                               # tension_cycle: the end force cycled by tension_swing (N), with
                               #   a saddle load fixed_lateral (N) held at midspan
+                              # fairlead: bent to bend_curvature (1/m), bend_radius (m) or
+                              #   bend_angle (deg) over bend_length (m), held while the tension
+                              #   cycles by tension_swing (N), or (cycled = "curvature") the
+                              #   curvature cycles about it by curvature_swing (1/m)
     tension = 40e3            # N, end force, held during bending
     lateral = 4.3e3           # N, saddle load amplitude
     curvature = 0.5           # 1/m, bending: nominal curvature amplitude
@@ -44,7 +48,7 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     saddle_length = 0.02      # m, axial length of the saddle at midspan
     control = "force"         # saddle: force (lateral) | displacement: the saddle load that
                               #   gives deflection (m, midspan) or yb (m, Y_b at clamp_distance)
-    zone = 0.4                # m, bending: central zone where curvature is measured
+    zone = 0.4                # m, bending, fairlead: central zone where curvature is measured
     direction = [1.0, 0.0, 0.0]     # direction of a positive lateral load / stretched fibre
     sweep = []                # amplitudes of lateral (or curvature) to run, each from the same
                               # tensioned state, into <folder>/<parameter>_<amplitude>/, with

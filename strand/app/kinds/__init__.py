@@ -12,8 +12,10 @@ case's, as the case's settings run it (``SetupKind.for_case``: a variant with an
 parameter, such as the saddle test under displacement control). The built-in kinds: ``saddle``
 (the seed paper's midspan saddle test, under force or displacement control,
 ``strand.app.kinds.saddle``), ``bending`` (uniform bending by end rotations,
-``strand.app.kinds.bending``) and ``tension_cycle`` (the end force cycled about the mean tension,
-``strand.app.kinds.tension_cycle``); tests/test_setup_kinds.py registers one of its own.
+``strand.app.kinds.bending``), ``tension_cycle`` (the end force cycled about the mean tension,
+``strand.app.kinds.tension_cycle``) and ``fairlead`` (a curvature held while the tension cycles,
+or cycled under the tension, ``strand.app.kinds.fairlead``); tests/test_setup_kinds.py registers
+one of its own.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from __future__ import annotations
 from ..kind_registry import lookup, registered, unregister
 from .base import NoSettings, SetupKind, kind_of, register, tension_stage, tension_then_cycle
 from .bending import UniformBending
+from .fairlead import Fairlead
 from .saddle import Saddle
 from .tension_cycle import TensionCycle
 
@@ -40,3 +43,4 @@ __all__ = [
 register(Saddle())
 register(UniformBending())
 register(TensionCycle())
+register(Fairlead())

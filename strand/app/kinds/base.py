@@ -51,6 +51,9 @@ class SetupKind(ABC):
         signed: its ``[load]`` settings that may be zero or negative.
         clamp: the set-up clamps the strand at z = 0 (the fatigue report's Poffenberger–Swart
             check at the clamp).
+        example: settings (``--set`` form, "section.key=value") that a case of the kind needs
+            beyond the defaults, for a kind whose own settings have no default that runs (its
+            docs tables are built from the default case with them).
     """
 
     name: str = ""
@@ -63,6 +66,7 @@ class SetupKind(ABC):
     step_settings: type = NoSettings
     signed: frozenset[str] = frozenset()
     clamp: bool = False
+    example: tuple[str, ...] = ()
 
     def load_text(self, value: float) -> str:
         """A value of the cycled parameter as figure titles give it ("P = 4.30 kN")."""

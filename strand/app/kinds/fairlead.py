@@ -1,0 +1,482 @@
+"""Bending at a fairlead as a set-up kind (``[load] kind = "fairlead"``): the strand under its
+tension, bent to the curvature of a fairlead sheave or a bend stiffener and held there while the
+tension cycles about its mean, or while the curvature cycles about the held one: a mooring line
+where it leaves the floater.
+
+The set-up is ``strand.setups.fairlead.FairleadTest``: the uniform bending test (ends turned by
+±κ L/2, a core strut carrying the tension, so that the section moment is uniform) whose tension is
+a mean plus a swing, and whose curvature is a held one plus a swing. Its own settings, ``[load]``:
+
+- the held curvature κ of the strand's axis, in exactly one way: ``bend_curvature`` (1/m),
+  ``bend_radius`` (m, the radius R of the axis over the sheave or in the stiffener: κ = 1/R), or
+  ``bend_angle`` (deg) over ``bend_length`` (m): the mean curvature of a line that turns through
+  that angle over that length;
+- ``cycled``: "tension" (default: the end force over ``[load] tension`` + ``cycle`` ×
+  ``tension_swing``, κ held) or "curvature" (the curvature over κ + ``cycle`` ×
+  ``curvature_swing``, the tension held);
+- ``curvature_swing`` (1/m): the curvature's amplitude about κ when it is cycled.
+
+The programme: the tension, then κ (held), then the swing's legs; the fatigue histories start at
+the bent state, so that a steady repetition of the cycle counts the swings about it, not the
+bending from straight. The kind shares the others' settings where they mean the same: ``[load]
+tension_swing`` (N) of the ``tension_cycle`` kind, ``zone`` (m, the central measuring zone) of the
+``bending`` kind, and their ``[steps]`` ``tension_swing``, ``tension_swing_max`` (N) and
+``curvature``, ``curvature_max`` (1/m: the ramp to κ and the curvature's legs). Its reference:
+the wire stresses of the bent strand in full stick and in full slip
+(``analytical.bent_wire_stresses``, docs/theory.md §5.7) beside the model's in the zone at the
+held state and at the largest swing; with the tension cycled, the wires' stress change over the
+swing beside the fibre model's; with the curvature cycled, the zone's M–κ figure. Units: m, N,
+Pa, 1/m; angles in degrees in the settings.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import partial
+from pathlib import Path
+from typing import ClassVar
+
+import numpy as np
+import numpy.typing as npt
+
+from ...analytical import BentWireStresses, bent_wire_stresses
+from ...analytical.fibre import fibre_model
+from ...cable.description import Cable
+from ...model.layer_fields import harmonic_fit
+from ...model.programme import LoadProgramme, Stage, cycle_stages
+from ..errors import CaseError
+from ..settings import Case
+from .base import SetupKind, tension_stage
+from .bending import bending_figure
+
+__all__ = [
+    "Fairlead",
+    "FairleadLoad",
+    "FairleadReport",
+    "BentState",
+    "bent_state",
+    "LayerStresses",
+    "zone_stresses",
+    "held_curvature",
+    "CURVATURE_INPUTS",
+    "CYCLED",
+    "CORE_BENDING_SHARE",
+]
+
+Array = npt.NDArray[np.float64]
+
+#: the ways to give the curvature (one of them): setting → its unit
+CURVATURE_INPUTS = {"bend_curvature": "1/m", "bend_radius": "m", "bend_angle": "deg"}
+#: the core's own bending may differ from E κ d/2 at the zone's curvature by this share before the
+#: summary warns that the core does not follow the strand's axis (measured: 0.1 % in stick and
+#: full slip on a 1+6, a factor 3.9 where the frictionless core snakes)
+CORE_BENDING_SHARE = 0.1
+#: what the cycle varies → the set-up's load parameter
+CYCLED = {"tension": "tension_swing", "curvature": "curvature_swing"}
+
+
+@dataclass(frozen=True, kw_only=True)
+class FairleadLoad:
+    """``[load]`` settings of the fairlead test.
+
+    Attributes:
+        bend_curvature: the curvature κ of the strand's axis at the fairlead, 1/m; 0: given
+            otherwise.
+        bend_radius: or the radius R of the strand's axis over the sheave or in the bend
+            stiffener (the groove's radius plus half the strand's diameter), m: κ = 1/R; 0: given
+            otherwise.
+        bend_angle: or the angle the line turns through over ``bend_length``, deg: κ = angle /
+            length, the mean curvature (a bend stiffener's peak is higher); 0: given otherwise.
+        bend_length: the length over which ``bend_angle`` is turned, m.
+        cycled: what the cycle varies: "tension" (the end force over [load] tension + cycle ×
+            tension_swing, the curvature held) or "curvature" (κ + cycle × curvature_swing,
+            the tension held).
+        curvature_swing: the curvature's amplitude about κ when it is cycled, 1/m (a line
+            whose angle at the fairlead swings: its curvature there swings with it).
+    """
+
+    bend_curvature: float = 0.0  # 1/m
+    bend_radius: float = 0.0  # m
+    bend_angle: float = 0.0  # deg
+    bend_length: float = 0.0  # m
+    cycled: str = "tension"  # "tension" or "curvature"
+    curvature_swing: float = 0.0  # 1/m
+
+    UNITS: ClassVar[dict[str, str]] = {
+        "bend_curvature": "1/m",
+        "bend_radius": "m",
+        "bend_angle": "deg",
+        "bend_length": "m",
+        "curvature_swing": "1/m",
+    }
+
+
+def held_curvature(load: FairleadLoad) -> float:
+    """The curvature κ (1/m) that ``load`` gives (0 when none is given)."""
+    if load.bend_curvature > 0:
+        return load.bend_curvature
+    if load.bend_radius > 0:
+        return 1.0 / load.bend_radius
+    if load.bend_angle > 0 and load.bend_length > 0:
+        return math.radians(load.bend_angle) / load.bend_length
+    return 0.0
+
+
+def _curvature_text(load: FairleadLoad) -> str:
+    """How ``load`` gives the curvature ("R = 5 m", "20° over 2 m", or "")."""
+    if load.bend_radius > 0:
+        return f"R = {load.bend_radius:g} m"
+    if load.bend_angle > 0:
+        return f"{load.bend_angle:g}° over {load.bend_length:g} m"
+    return ""
+
+
+@dataclass(frozen=True, kw_only=True)
+class LayerStresses:
+    """The model's wire stresses per layer (0 = core) over the measuring zone's elements at one
+    state, Pa: the axial stress N/A fitted against φ as mean + amplitude sin φ (+ b cos φ; the
+    core: its mean, no amplitude), the wire's own bending stress abs(M) r/I (its mean and its
+    spread, max − min), and the largest surface stress N/A + abs(M) r/I."""
+
+    tension_stress: Array
+    amplitude: Array
+    bending: Array
+    bending_spread: Array
+    peak: Array
+
+
+def zone_stresses(
+    cable: Cable, cells, zone: tuple[float, float], direction: npt.ArrayLike
+) -> LayerStresses:
+    """``LayerStresses`` of the ``cells`` (``post.CellResults``) whose initial midpoint lies in
+    ``zone`` = (z_min, z_max) (m); ``direction``: the set-up's bending direction (the core's
+    section frame, ``fatigue.stress.section_frames``)."""
+    from ...fatigue.stress import section_components, section_frames
+
+    inside = (cells.z >= zone[0]) & (cells.z <= zone[1])
+    e1, e2 = section_frames(cells.tangent, cells.radial, fallback=direction)
+    m = section_components(cells.moment, cells.tangent, e1, e2)
+    n = len(cable.layers)
+    out = {k: np.full(n, np.nan) for k in ("mean", "amp", "bend", "spread", "peak")}
+    for i, lay in enumerate(cable.layers):
+        mine = inside & (cells.layer == i)
+        if not np.any(mine):
+            continue
+        d = lay.wire.diameter
+        axial = cells.axial[mine] / lay.wire.area
+        bending = np.hypot(m[mine, 0], m[mine, 1]) * (d / 2) / (np.pi * d**4 / 64)
+        if i == 0:
+            out["mean"][i], out["amp"][i] = axial.mean(), 0.0
+        else:
+            out["mean"][i], out["amp"][i], _ = harmonic_fit(cells.phi[mine], axial)
+        out["bend"][i], out["spread"][i] = bending.mean(), np.ptp(bending)
+        out["peak"][i] = np.max(axial + bending)
+    return LayerStresses(
+        tension_stress=out["mean"],
+        amplitude=out["amp"],
+        bending=out["bend"],
+        bending_spread=out["spread"],
+        peak=out["peak"],
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class BentState:
+    """One state of the fairlead run beside its closed forms.
+
+    Attributes:
+        step: its step number.
+        tension: the strand's tension there, N.
+        nominal, curvature: the nominal (end rotations) and the zone's measured curvature, 1/m.
+        model: the model's wire stresses in the zone (``LayerStresses``).
+        stick, slip: the closed forms at the zone's curvature and that tension
+            (``analytical.BentWireStresses``).
+    """
+
+    step: int
+    tension: float
+    nominal: float
+    curvature: float
+    model: LayerStresses
+    stick: BentWireStresses
+    slip: BentWireStresses
+
+
+@dataclass(frozen=True, kw_only=True)
+class FairleadReport:
+    """The fairlead run beside its closed forms: the held state (the end of the ramp to κ) and
+    the state at the largest swing (None before the cycle), and, with the tension cycled, the
+    zone's mean axial stress change per layer between them (Pa) beside the fibre model's
+    E cos²α ΔT/EA (empty arrays otherwise)."""
+
+    held: BentState
+    peak: BentState | None = None
+    swing_change: Array = field(default_factory=lambda: np.zeros(0))
+    swing_fibre: Array = field(default_factory=lambda: np.zeros(0))
+
+
+def bent_state(case: Case, step, cells) -> BentState:
+    """The ``BentState`` of the run step ``step`` (a ``RunStep`` of the fairlead set-up) whose
+    cell results are ``cells``."""
+    L, zone = case.mesh.length, case.load.zone
+    tension, kappa = step.state.end_force, step.state.curvature
+    closed = {
+        state: bent_wire_stresses(case.cable, tension, kappa, state, friction=case.contact.friction)
+        for state in ("stick", "slip")
+    }
+    return BentState(
+        step=step.number,
+        tension=tension,
+        nominal=step.state.curvature_nominal,
+        curvature=kappa,
+        model=zone_stresses(
+            case.cable, cells, (L / 2 - zone / 2, L / 2 + zone / 2), case.load.direction
+        ),
+        **closed,
+    )
+
+
+def state_lines(title: str, r: BentState, friction: bool) -> list[str]:
+    """The summary's table of one state's wire stresses beside the closed forms."""
+    m, k, s = r.model, r.stick, r.slip
+    change = f" ({100 * (r.curvature / r.nominal - 1):+.1f} %)" if r.nominal else ""
+    how = "with the cable's friction" if friction else "frictionless"
+    lines = [
+        f"  {title}, step {r.step}: tension {r.tension / 1e3:.4g} kN, curvature nominal "
+        f"{r.nominal:.4g} 1/m, zone {r.curvature:.4g} 1/m{change}",
+        f"    wire stresses in the zone (MPa), model / full stick / full slip ({how}; "
+        "docs/theory.md §5.7) at the zone's curvature:",
+        "    layer     σ_T (mean axial)          axial sin φ amplitude     own bending (mean)"
+        "        largest surface",
+    ]
+    for i in range(len(m.peak)):
+        name = "core" if i == 0 else f"layer {i}"
+        columns = [
+            (m.tension_stress[i], k.tension_stress[i], s.tension_stress[i]),
+            (m.amplitude[i], k.sine_amplitude[i], s.sine_amplitude[i]),
+            (m.bending[i], k.bending[i], s.bending[i]),
+            (m.peak[i], k.largest[i], s.largest[i]),
+        ]
+        text = "  ".join(f"{a / 1e6:7.1f} /{b / 1e6:7.1f} /{c / 1e6:7.1f}" for a, b, c in columns)
+        lines.append(f"    {name:8s}  {text}")
+    spread = ", ".join(
+        f"{'core' if i == 0 else f'layer {i}'} {100 * d / b:.0f} %"
+        for i, (d, b) in enumerate(zip(m.bending_spread, m.bending, strict=True))
+    )
+    lines.append(
+        f"    own bending's spread over the zone (max − min over mean): {spread} (the wires "
+        "spin on their neighbours, which the closed forms leave out)"
+    )
+    core = m.bending[0] / k.bending[0] if k.bending[0] else 1.0
+    if not abs(core - 1) <= CORE_BENDING_SHARE:
+        lines.append(
+            f"    warning: the core's own bending in the zone is {core:.2f} × E κ d/2 at the "
+            "zone's curvature: the core does not follow the strand's axis (frictionless with "
+            '[contact] same_layer = "off", the frozen normals let it snake inside its layer: '
+            "docs/mooring.md), and the wire stresses are not the strand's"
+        )
+    return lines
+
+
+class Fairlead(SetupKind):
+    """Bending at a fairlead: tension, then the curvature κ held while the tension cycles about
+    its mean, or while the curvature cycles about κ (``cycled``)."""
+
+    name = "fairlead"
+    load_settings = FairleadLoad
+    signed = frozenset({*CURVATURE_INPUTS, "bend_length", "curvature_swing"})  # here: ≥ 0
+    clamp = False  # Poffenberger–Swart's clamp is not a fairlead's
+    example = ("load.bend_radius=5.0",)  # the curvature has no default
+
+    def __init__(self, cycled: str = "tension"):
+        self.cycled = cycled
+        self.parameter = CYCLED.get(cycled, "tension_swing")
+        if self.parameter == "curvature_swing":
+            self.unit, self.progress_unit, self.symbol = "1/m", ("1/m", 1.0), "Δκ"
+            self.measure = "curvature"
+        else:
+            self.unit, self.progress_unit, self.symbol = "N", ("kN", 1e3), "ΔT"
+            self.measure = "end_displacement"
+
+    def load_text(self, value: float) -> str:
+        if self.parameter == "curvature_swing":
+            return f"Δκ = {value:.3g} 1/m"
+        return super().load_text(value)
+
+    # -- settings ----------------------------------------------------------------------------------
+    def check_settings(self, load: FairleadLoad, steps) -> None:
+        """Its own settings alone, in a case of any kind: no negative curvature input, a known
+        ``cycled`` (the shared steps are checked by their own kinds)."""
+        for key in (*CURVATURE_INPUTS, "bend_length", "curvature_swing"):
+            value = getattr(load, key)
+            if value < 0:
+                unit = FairleadLoad.UNITS[key]
+                raise CaseError(
+                    f"[load] {key} = {value:g} {unit}: expected a positive value (the bending "
+                    "direction is [load] direction, the cycle gives the swing's signs), or 0 "
+                    "for none"
+                )
+        if load.cycled not in CYCLED:
+            raise CaseError(
+                f'[load] cycled = {load.cycled!r}: expected "tension" (the end force cycled, '
+                'the curvature held) or "curvature" (the curvature cycled, the tension held)'
+            )
+
+    def check_case(self, case: Case) -> None:
+        """Exactly one curvature input; the zone shorter than the strand; a tension cycle that
+        keeps the strand in tension, or a curvature swing to cycle."""
+        own, load = self.load(case), case.load
+        if (own.bend_angle > 0) != (own.bend_length > 0):
+            raise CaseError(
+                f"[load] bend_angle = {own.bend_angle:g} deg and bend_length = "
+                f"{own.bend_length:g} m go together: the line turns through bend_angle over "
+                "bend_length (κ = angle/length)"
+            )
+        given = [key for key in CURVATURE_INPUTS if getattr(own, key) > 0]
+        if not given:
+            raise CaseError(
+                '[load] kind = "fairlead" needs the curvature: bend_curvature (1/m), '
+                "bend_radius (m, κ = 1/R) or bend_angle (deg) with bend_length (m)"
+            )
+        if len(given) > 1:
+            both = " and ".join(
+                f"{key} = {getattr(own, key):g} {CURVATURE_INPUTS[key]}" for key in given
+            )
+            raise CaseError(f"[load] {both} are both given: give the curvature one way")
+        zone, length = load.zone, case.mesh.length
+        if zone >= length:
+            raise CaseError(
+                f"[load] zone = {zone} m must be shorter than [mesh] length = {length} m"
+            )
+        if own.cycled == "curvature" and not own.curvature_swing > 0:
+            raise CaseError(
+                '[load] cycled = "curvature" needs [load] curvature_swing (1/m), the '
+                "curvature's amplitude about the held one"
+            )
+        if own.cycled == "tension":
+            lowest = load.tension + load.tension_swing * min(0.0, *load.cycle)
+            if lowest <= 0:
+                raise CaseError(
+                    f"[load] tension_swing = {load.tension_swing:g} N takes the end force down "
+                    f"to {lowest:g} N with [load] cycle = {list(load.cycle)}: it must stay "
+                    f"above 0 ([load] tension = {load.tension:g} N)"
+                )
+
+    def for_case(self, case: Case) -> SetupKind:
+        """The kind that cycles what ``[load] cycled`` says."""
+        cycled = self.load(case).cycled
+        return self if cycled == self.cycled else Fairlead(cycled)
+
+    # -- the run -----------------------------------------------------------------------------------
+    def setup(self, case: Case):
+        from ...setups.fairlead import FairleadTest
+
+        return partial(
+            FairleadTest,
+            zone=case.load.zone,
+            direction=case.load.direction,
+            cycle_parameter=self.parameter,
+        )
+
+    def amplitude(self, case: Case) -> float:
+        """The swing the cycle's targets multiply: ``tension_swing`` (N) or
+        ``curvature_swing`` (1/m)."""
+        return getattr(case.load, self.parameter)
+
+    def step_sizes(self, steps) -> tuple[float, float]:
+        """First and largest increment of the cycle's legs, from the shared ``[steps]``
+        (``steps``: the case's ``StepSettings``): ``tension_swing``, ``tension_swing_max`` (N),
+        or ``curvature``, ``curvature_max`` (1/m)."""
+        name = "tension_swing" if self.parameter == "tension_swing" else "curvature"
+        return getattr(steps, name), getattr(steps, f"{name}_max")
+
+    def programme(self, case: Case) -> LoadProgramme:
+        """The tension, the curvature κ (held), then the legs of the swing."""
+        steps = case.steps
+        first, largest = self.step_sizes(steps)
+        bend = Stage(
+            "curvature",
+            "curvature",
+            held_curvature(self.load(case)),
+            steps.curvature,
+            steps.curvature / 2**steps.cuts,
+            steps.curvature_max,
+            steps.growth,
+            extrapolate=steps.predictor,
+        )
+        legs = cycle_stages(
+            self.parameter,
+            self.amplitude(case),
+            case.load.cycle,
+            first,
+            largest,
+            cuts=steps.cuts,
+            growth=steps.growth,
+            predictor=steps.predictor,
+        )
+        return LoadProgramme((tension_stage(case), bend, *legs), self.parameter)
+
+    # -- results -----------------------------------------------------------------------------------
+    def reference(self, case: Case, result) -> FairleadReport | None:
+        """The held state's and the largest swing's wire stresses in the zone beside the closed
+        forms in full stick and full slip at the zone's curvature; with the tension cycled, the
+        swing's stress change beside the fibre model."""
+        bent = [s for s in result.steps if s.parameter == "curvature"]
+        if not bent or result.tensioned is None or bent[-1].state.curvature == 0:
+            return None
+        held = bent_state(case, bent[-1], result.tensioned)
+        top = result.peak_step
+        if top is None or result.peak is None or top.load == 0:
+            return FairleadReport(held=held)
+        peak = bent_state(case, top, result.peak)
+        if self.parameter != "tension_swing":
+            return FairleadReport(held=held, peak=peak)
+        ea = fibre_model(case.cable, 1.0)["EA"]
+        return FairleadReport(
+            held=held,
+            peak=peak,
+            swing_change=peak.model.tension_stress - held.model.tension_stress,
+            swing_fibre=np.array(
+                [lay.wire.E * np.cos(lay.alpha) ** 2 * top.load / ea for lay in case.cable.layers]
+            ),
+        )
+
+    def summary_lines(self, case: Case, result) -> list[str]:
+        r = result.reference
+        if r is None:
+            return []
+        own = self.load(case)
+        given = _curvature_text(own)
+        cycle = list(case.load.cycle)
+        if self.parameter == "curvature_swing":
+            what = f"curvature cycled κ + {cycle} × {own.curvature_swing:g} 1/m, tension held"
+        else:
+            what = (
+                f"tension cycled {case.load.tension / 1e3:g} kN + {cycle} × "
+                f"{case.load.tension_swing / 1e3:g} kN, curvature held"
+            )
+        friction = case.contact.friction
+        lines = [
+            f"fairlead: κ = {held_curvature(own):.4g} 1/m{f' ({given})' if given else ''}; {what}",
+            *state_lines("held", r.held, friction),
+        ]
+        if r.peak is not None:
+            label = self.load_text(result.peak_step.load)
+            lines += state_lines(f"at the largest swing {label}", r.peak, friction)
+        if len(r.swing_change):
+            parts = ", ".join(
+                f"{'core' if i == 0 else f'layer {i}'} {a / 1e6:+.2f} / {b / 1e6:+.2f}"
+                for i, (a, b) in enumerate(zip(r.swing_change, r.swing_fibre, strict=True))
+            )
+            lines.append(
+                "  the zone's mean axial stress change from the held state to the largest swing "
+                f"(MPa), model / fibre model E cos²α ΔT/EA: {parts}"
+            )
+        return lines
+
+    def figures(self, case: Case, result, note: str = "") -> list[Path]:
+        """With the curvature cycled, the zone's M–κ loop (the uniform bending test's figure)."""
+        if self.parameter != "curvature_swing" or not result.bending:
+            return []
+        return [bending_figure(case, result, note)]

@@ -70,9 +70,9 @@ def test_the_deformed_view_has_a_title_that_fits_and_a_scale(quick_run):
 
 
 def test_stress_range_draws_the_sn_curve_with_the_wires_on_it(quick_run):
-    """stress_range.png: beside the ranges along z, the outer layer's S–N curve (EN 1992-1-1's
-    prestressing steel, Δσ = 2σ_a against N) and each outer wire's largest range in the free
-    span and the clamp zone (wires.csv) placed on it at its life."""
+    """stress_range.png: beside the ranges along z, every layer's S–N curve (EN 1992-1-1's
+    prestressing steel, Δσ = 2σ_a against N) and each wire's largest range in the free span and
+    the clamp zone (wires.csv), the core's and the outer layer's, placed on it at its life."""
     fig = quick_run["figures"]["stress_range.png"]
     sn = next(ax for ax in fig.axes if ax.get_xscale() == "log" and ax.get_yscale() == "log")
     curve = SN_CURVES["en1992-prestressing-steel"]
@@ -81,12 +81,43 @@ def test_stress_range_draws_the_sn_curve_with_the_wires_on_it(quick_run):
     assert n.min() <= 1e4 and n.max() >= 1e9
     np.testing.assert_allclose(curve.life(1e6 * np.asarray(delta) / 2), n, rtol=1e-9)
     with open(quick_run["folder"] / "wires.csv") as f:
-        wires = [w for w in csv.DictReader(f) if w["layer"] == "1"]
-    for zone, key in (("free span", "range_free_span_MPa"), ("clamp zone", "range_clamp_zone_MPa")):
-        points = next(ln for ln in sn.lines if ln.get_label().endswith(zone))
-        x, y = points.get_data()
-        np.testing.assert_allclose(sorted(y), sorted(float(w[key]) for w in wires), rtol=1e-5)
-        np.testing.assert_allclose(x, curve.life(1e6 * np.asarray(y) / 2), rtol=1e-9)
+        rows = list(csv.DictReader(f))
+    for layer in ("0", "1"):
+        wires = [w for w in rows if w["layer"] == layer]
+        for zone, key in (
+            ("free span", "range_free_span_MPa"),
+            ("clamp zone", "range_clamp_zone_MPa"),
+        ):
+            points = next(ln for ln in sn.lines if ln.get_gid() == f"{layer} {zone}")
+            x, y = points.get_data()
+            expected = sorted(float(w[key]) for w in wires)
+            np.testing.assert_allclose(sorted(y), expected, rtol=1e-5)
+            np.testing.assert_allclose(x, curve.life(1e6 * np.asarray(y) / 2), rtol=1e-9)
+
+
+def test_stress_range_shows_every_layer_and_stars_the_largest(quick_run):
+    """stress_range.png along z: a line per layer (the core and layer 1) whose peak is that
+    layer's largest range in wire_stresses.csv, and a star on the largest of all, annotated
+    with its value, wire, layer and z, as the suptitle says too."""
+    fig = quick_run["figures"]["stress_range.png"]
+    along = next(ax for ax in fig.axes if ax.get_xlabel() == "z (mm)")
+    with open(quick_run["folder"] / "wire_stresses.csv") as f:
+        rows = [
+            {k: float(v) if k != "zone" else v for k, v in r.items()} for r in csv.DictReader(f)
+        ]
+    for layer in (0, 1):
+        line = next(ln for ln in along.lines if ln.get_gid() == f"envelope {layer}")
+        top = max(r["range_MPa"] for r in rows if r["layer"] == layer)
+        assert max(line.get_ydata()) == pytest.approx(top, rel=1e-5), layer
+    worst = max(rows, key=lambda r: r["range_MPa"])
+    (star,) = [ln for ln in along.lines if ln.get_gid() == "largest"]
+    assert star.get_xdata()[0] == pytest.approx(1e3 * worst["z_m"], abs=0.01)
+    assert star.get_ydata()[0] == pytest.approx(worst["range_MPa"], rel=1e-5)
+    (note,) = [t for t in along.texts if t.get_gid() == "largest"]
+    place = f"wire {worst['wire']:.0f} (layer {worst['layer']:.0f})"
+    assert f"largest: {worst['range_MPa']:.1f} MPa" in note.get_text()
+    assert place in note.get_text() and f"z = {1e3 * worst['z_m']:.1f} mm" in note.get_text()
+    assert f"largest {worst['range_MPa']:.1f} MPa, {place}" in fig._suptitle.get_text()
 
 
 def test_load_deflection_keeps_both_laws_in_sight(quick_run):

@@ -145,7 +145,8 @@ register_output(
         "deformed_axial_force.png": "figure: the deformed strand coloured by axial force "
         "(displacements magnified, factor in the title)",
         "fretting_map.png": "figure: the contact pairs that slid, per interface",
-        "stress_range.png": "figure: stress ranges against the S-N curve",
+        "stress_range.png": "figure: every layer's stress ranges, the largest marked, "
+        "against the S-N curves",
         "layer_pressure.png": "figure: per layer, its pressure on the crossings below, its "
         "same-layer ring's share and the fibre model, tensioned and at the peak",
     },

@@ -11,10 +11,14 @@ import numpy as np
 import pytest
 
 import strand.app.plots as plots
+from strand.app.case import case_from_dict
 from strand.app.fatigue.findings import ElementResults
+from strand.app.fatigue.spectrum import spectrum_report, write_spectrum
+from strand.app.fatigue.spectrum_figure import spectrum_figure_data
 from strand.app.fatigue.stress_range import largest_range, layer_envelope, stress_range_figure
 from strand.app.fatigue.wire_stresses import wire_results
 from strand.fatigue import SN_CURVES
+from strand.fatigue.tn import api_spiral_strand_life, dnv_spiral_rope_life
 
 STEEL = SN_CURVES["en1992-prestressing-steel"]
 
@@ -114,3 +118,120 @@ def test_stress_range_draws_every_layer_and_stars_the_largest_in_the_core(tmp_pa
     (on_curve,) = [ln for ln in sn.lines if ln.get_gid() == "largest"]
     assert on_curve.get_xdata()[0] == pytest.approx(STEEL.life(210e6))
     assert "not assessed: layer 2" in sn.get_title()
+
+
+# --- spectrum.png ---------------------------------------------------------------------------
+
+CLASSES = [[100.0, 2e6], [200.0, 3e5], [300.0, 1e4]]  # lateral amplitude (N), cycles a year
+AREA, MBS, MEAN = 1e-4, 2e5, 5e4  # m², N, N
+
+
+def _member(amplitude: float) -> SimpleNamespace:
+    """A spectrum member's fatigue report as the spectrum and its figure read it: one steel
+    wire of two elements, in the free span (a range of 1.5 MPa per N of amplitude) and at the
+    clamp (2 MPa per N), each damaged by one cycle of its range; one pair; a tension range of
+    100 N per N of amplitude about 50 kN, with its DNV-OS-E301 and API RP 2SK damage."""
+    ranges = np.array([1.5e6, 2e6]) * amplitude
+    damage = 1 / STEEL.life(ranges / 2)
+    dt = 100 * amplitude
+    return SimpleNamespace(
+        elements=SimpleNamespace(
+            wire=np.array([0, 0]),
+            layer=np.array([0, 0]),
+            z=np.array([0.5, 0.02]),
+            clamp=np.array([False, True]),
+            range=ranges,
+            damage=damage,
+        ),
+        crossings=SimpleNamespace(
+            interface=np.array([0]),
+            wire_a=np.array([0]),
+            wire_b=np.array([1]),
+            z=np.array([0.5]),
+            clamp=np.array([False]),
+            line=np.array([True]),
+            damage=np.array([damage[0]]),
+        ),
+        wires=SimpleNamespace(curve=np.array(["en1992-prestressing-steel"])),
+        curves=[STEEL],
+        end_zone=0.1,
+        length=1.0,
+        tension_check=SimpleNamespace(
+            dnv=float(1 / dnv_spiral_rope_life(dt, AREA)),
+            api=float(1 / api_spiral_strand_life(dt, MBS, MEAN)),
+            range=dt,
+            mean=MEAN,
+            cycle=True,
+            area=AREA,
+        ),
+    )
+
+
+def _spectrum_case(plots: bool = True):
+    return case_from_dict(
+        {
+            "fatigue": {"spectrum": CLASSES, "breaking_strength": MBS},
+            "output": {"plots": plots},
+        }
+    )
+
+
+def _results() -> list[SimpleNamespace]:
+    return [SimpleNamespace(fatigue=_member(a), failure="", interrupted=False) for a, _ in CLASSES]
+
+
+def test_the_spectrum_figure_data_holds_each_class_at_the_worst_places():
+    """The clamp element (largest D) first, then the free span's; per class its range in the
+    member and nᵢ/Nᵢ by hand; the T–N classes nᵢ D_T,i; their sums the report's D."""
+    results = _results()
+    report = spectrum_report(_spectrum_case(), results, "lateral", "N")
+    data = spectrum_figure_data(report, [r.fatigue for r in results], MBS)
+    amplitudes, counts = np.array(CLASSES).T
+    np.testing.assert_array_equal(data.amplitudes, amplitudes)
+    np.testing.assert_array_equal(data.counts, counts)
+    assert [(p.element, p.clamp) for p in data.places] == [(1, True), (0, False)]
+    for place, per_newton in zip(data.places, (2e6, 1.5e6), strict=True):
+        np.testing.assert_allclose(place.range, per_newton * amplitudes, rtol=1e-12)
+        np.testing.assert_allclose(place.damage, counts / STEEL.life(place.range / 2), rtol=1e-9)
+    assert data.places[0].damage.sum() == pytest.approx(np.nanmax(report.wires.damage))
+    np.testing.assert_allclose(
+        data.dnv, counts / dnv_spiral_rope_life(100 * amplitudes, AREA), rtol=1e-12
+    )
+    assert data.dnv.sum() == pytest.approx(report.tension.dnv, rel=1e-12)
+    assert data.api.sum() == pytest.approx(report.tension.api, rel=1e-12)
+
+
+def test_the_spectrum_figure_shows_each_class_damage_and_its_place_on_the_curves(tmp_path, drawn):
+    """write_spectrum with plots: spectrum.png, its bars a series per place and T–N curve, a
+    bar per class of height nᵢ dᵢ, the classes' amplitudes and counts under them; beside, the
+    wire's S–N curve, DNV-OS-E301's and API RP 2SK's on ΔT/A, each class at its count and on
+    its curve at its life. Without plots, no figure."""
+    write_spectrum(tmp_path, _spectrum_case(), _results(), "lateral", "N")
+    assert (tmp_path / "spectrum.png").is_file()
+    bars, curves = drawn["spectrum.png"].axes[:2]
+    amplitudes, counts = np.array(CLASSES).T
+    heights = {}
+    for bar in bars.patches:
+        heights.setdefault(bar.get_gid(), []).append(bar.get_height())
+    assert sorted(heights) == ["bars 0", "bars 1", "bars 2", "bars 3"]
+    clamp = counts / STEEL.life(1e6 * amplitudes)
+    np.testing.assert_allclose(heights["bars 0"], clamp, rtol=1e-9)
+    np.testing.assert_allclose(
+        heights["bars 3"], counts / api_spiral_strand_life(100 * amplitudes, MBS, MEAN)
+    )
+    labels = [t.get_text() for t in bars.get_xticklabels()]
+    assert labels == ["100 N\nn = 2e+06", "200 N\nn = 3e+05", "300 N\nn = 1e+04"]
+    lines = {ln.get_gid(): ln.get_data() for ln in curves.lines if ln.get_gid()}
+    n, s = lines["curve dnv"]
+    np.testing.assert_allclose(dnv_spiral_rope_life(1e6 * s * AREA, AREA), n, rtol=1e-9)
+    n, s = lines["curve api"]
+    np.testing.assert_allclose(api_spiral_strand_life(1e6 * s * AREA, MBS, MEAN), n, rtol=1e-9)
+    n, s = lines["life wire 0"]
+    np.testing.assert_allclose(s, 2 * amplitudes, rtol=1e-12)
+    np.testing.assert_allclose(n, STEEL.life(1e6 * amplitudes), rtol=1e-12)
+    np.testing.assert_allclose(lines["count wire 1"][0], counts)
+    np.testing.assert_allclose(lines["count dnv"][1], 100 * amplitudes / AREA / 1e6)
+    other = tmp_path / "no_plots"
+    other.mkdir()
+    write_spectrum(other, _spectrum_case(plots=False), _results(), "lateral", "N")
+    assert not (other / "spectrum.png").exists() and (other / "spectrum.txt").is_file()

@@ -3,6 +3,7 @@ first runs it (``quick_run``), titles inside their figures, a scale on the defor
 curve that stress_range.png promises, and both analytical laws of load_deflection.png in sight."""
 
 import csv
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,6 +12,8 @@ from matplotlib.colors import to_rgba
 
 from strand.app.deformed_picture import magnification
 from strand.fatigue import SN_CURVES
+
+ROOT = Path(__file__).parents[1]
 
 
 @pytest.mark.parametrize("largest", [1e-7, 3.3e-6, 4e-5, 1.2e-4, 9e-4, 2.4e-3])
@@ -137,3 +140,75 @@ def test_load_deflection_keeps_both_laws_in_sight(quick_run):
     assert band.get_linewidth() >= 3 * line.get_linewidth()
     assert band.get_zorder() < model.get_zorder() < line.get_zorder()
     assert line.get_linestyle() not in ("-", "solid")
+
+
+def _picture_of(tmp_path, length: float, deflection: float, monkeypatch) -> dict:
+    """The deformed picture of the 120-wire mooring strand (61.2 mm) over ``length`` (m), its
+    axis deflected along x by ``deflection`` (m) at midspan in a sine: the plotter's window, the
+    projected extents (pixels) of the strand's tubes, of the rulers' ends and of the title, and
+    the scalar bar's top."""
+    from types import SimpleNamespace
+
+    import strand.app.deformed_picture as picture
+    from strand.app.case import load_case
+    from strand.cable.geometry import build_geometry
+
+    case = load_case(ROOT / "cases" / "mooring_judge120.toml", [f"mesh.length={length}"])
+    g = build_geometry(case.cable, length, 1e-2)
+    z = g.points[:, 2]
+    w = np.zeros((len(z), 6))
+    w[:, 0] = deflection * np.sin(np.pi * z / length)
+    cell_z = z[g.cells].mean(axis=1)
+    result = SimpleNamespace(
+        peak=SimpleNamespace(layer=g.cell_layer, z=cell_z, axial=1e4 + 1e3 * cell_z / length),
+        peak_w=w,
+        peak_step=SimpleNamespace(load=180.3e3),
+    )
+    seen, save = {}, picture.save
+
+    def keep(plotter, path):
+        strand = plotter.actors["strand"]
+        rulers = [p for p in _props(plotter) if p.IsA("vtkAxisActor2D")]
+        ends = []
+        for r in rulers:
+            for c in (r.GetPositionCoordinate(), r.GetPosition2Coordinate()):
+                ends.append(c.GetComputedDoubleDisplayValue(plotter.renderer))
+        bar = next(p for p in _props(plotter) if p.IsA("vtkScalarBarActor"))
+        seen.update(
+            window=tuple(plotter.window_size),
+            strand=picture.projected_extent(plotter, picture._corners(strand.GetBounds())),
+            rulers=np.array(ends),
+            title=picture.text_extent(plotter, plotter.actors["title"]),
+            bar_top=bar.GetPosition2Coordinate().GetComputedDisplayValue(plotter.renderer)[1],
+        )
+        return save(plotter, path)
+
+    monkeypatch.setattr(picture, "save", keep)
+    picture.deformed_picture(case, result, SimpleNamespace(geometry=g), tmp_path / "d.png", "x")
+    return seen
+
+
+def _props(plotter) -> list:
+    props = plotter.renderer.GetViewProps()
+    return [props.GetItemAsObject(i) for i in range(props.GetNumberOfItems())]
+
+
+@pytest.mark.parametrize(("length", "deflection"), [(0.05, 2e-4), (0.15, 1e-4), (0.6, 1e-3)])
+def test_the_deformed_picture_frames_a_short_thick_strand(
+    tmp_path, monkeypatch, length, deflection
+):
+    """The mooring strand, 61.2 mm thick, over 0.8, 2.5 and 10 diameters: its tubes, as the
+    camera projects them (its bounding box's corners, in pixels), lie within the picture with a
+    margin of 3 % of its width and height, under the title and above the colour bar; the
+    rulers' ends lie within the picture too. The strand fills the region the picture keeps for
+    it in one direction (at least 60 % of its width or height)."""
+    seen = _picture_of(tmp_path, length, deflection, monkeypatch)
+    width, height = seen["window"]
+    x0, x1, y0, y1 = seen["strand"]
+    assert 0.03 * width <= x0 < x1 <= 0.97 * width, (seen, width)
+    assert 0.03 * height <= y0 < y1 <= 0.97 * height, (seen, height)
+    assert y1 < seen["title"][2] and y0 > seen["bar_top"], seen
+    rulers = seen["rulers"]
+    assert np.all((rulers[:, 0] > 0) & (rulers[:, 0] < width)), rulers
+    assert np.all((rulers[:, 1] > 0) & (rulers[:, 1] < height)), rulers
+    assert (x1 - x0) >= 0.6 * 0.8 * width or (y1 - y0) >= 0.6 * 0.57 * height, seen

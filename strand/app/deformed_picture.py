@@ -40,36 +40,24 @@ def magnification(largest: float, size: float) -> float:
 
 def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") -> Path:
     """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
-    at the largest load and coloured by wire axial force, seen across the load. Displacements are
-    magnified (``magnification``: the largest across the strand's axis shown as up to half the
-    strand's diameter), the factor in the title (two lines, shrunk to fit the picture:
-    ``fit_text``); two rulers give the scale: z along the strand (mm, true scale) under it, and
+    at the largest load and coloured by wire axial force, seen across the load (``_tubes``).
+    Displacements across the axis are magnified (``magnification``: the largest shown as up to
+    half the strand's diameter), along it at true scale, the factor in the title (two lines,
+    shrunk to fit the picture: ``fit_text``); two rulers give the scale: z along the strand (mm,
+    true scale) under the tubes, and
     beyond its right end the deflection (mm, as magnified) down from the undeformed axis. The
     camera frames the tubes and the rulers within ``STRAND_REGION`` (``parallel_frame``), in a
     picture 650 pixels high and as wide as they need (1100–1800): a strand a few diameters long
     is in view as a long one is. ``at_peak``: the largest load as the title gives it
     (``SetupKind.load_text``)."""
-    import pyvista
-
-    g = problem.geometry
-    peak, L = result.peak, case.mesh.length
-    D = case.cable.outer_diameter
+    L, D = case.mesh.length, case.cable.outer_diameter
     half = min(L / 2, max(0.15 * L, 6 * D))
-    outer = len(case.cable.layers) - 1
-    shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
-    u = result.peak_w[:, :3]  # the geometry's point order, whole on every rank
-    factor = magnification(float(np.abs(u[g.cells[shown], :2]).max(initial=0.0)), D)
-    x = g.points + factor * u
-    lines = np.column_stack([np.full(len(shown), 2), g.cells[shown]]).ravel()
-    grid = pyvista.PolyData(x, lines=lines)
-    grid.cell_data["N (N)"] = peak.axial[shown]
-    radius = case.cable.layers[-1].wire.diameter / 2
-    grid = grid.cell_data_to_point_data().tube(radius=radius, n_sides=16)
+    grid, factor = _tubes(case, result, problem.geometry, half)
     d = np.asarray(case.load.direction, float) * np.sign(result.peak_step.load or 1.0)
     axis = np.array([0.0, 0.0, 1.0])
     start, end = (L / 2 - half) * axis, (L / 2 + half) * axis
-    below = d * 1.25 * D  # the picture's down is d: under the deflected strand
-    beside = end + max(0.15 * half, 0.3 * D) * axis
+    below = d * (np.max(grid.points @ d) + 0.2 * D)  # the picture's down is d: under the tubes
+    beside = (grid.bounds[5] + max(0.15 * half, 0.3 * D)) * axis
     content = np.vstack([_corners(grid.bounds), start + below, end + below, beside])
     height = 650
     width = _width(content, axis, -d, height)
@@ -93,7 +81,11 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
             "color": "black",
         },
     )
-    shown_as = f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"
+    shown_as = (
+        f"displacements across the axis magnified {factor:g}×"
+        if factor > 1
+        else "displacements true scale"
+    )
     title = plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
         f"midspan\nat {at_peak} (downwards), T = {case.load.tension / 1e3:g} kN; "
@@ -145,6 +137,27 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
     plotter.renderer.ResetCameraClippingRange()
     fit_text(plotter, title)
     return save(plotter, path)
+
+
+def _tubes(case, result, geometry, half: float):
+    """The outer layer's wires within ±``half`` (m) of midspan as tubes, displaced at the
+    largest load, coloured by axial force ("N (N)"); the displacements across the axis
+    magnified (``magnification``), along it at true scale as the z ruler reads them. The tubes
+    and the factor."""
+    import pyvista
+
+    peak, L = result.peak, case.mesh.length
+    outer = len(case.cable.layers) - 1
+    shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
+    u = result.peak_w[:, :3]  # the geometry's point order, whole on every rank
+    across = float(np.abs(u[geometry.cells[shown], :2]).max(initial=0.0))
+    factor = magnification(across, case.cable.outer_diameter)
+    x = geometry.points + u * np.array([factor, factor, 1.0])
+    lines = np.column_stack([np.full(len(shown), 2), geometry.cells[shown]]).ravel()
+    grid = pyvista.PolyData(x, lines=lines)
+    grid.cell_data["N (N)"] = peak.axial[shown]
+    radius = case.cable.layers[-1].wire.diameter / 2
+    return grid.cell_data_to_point_data().tube(radius=radius, n_sides=16), factor
 
 
 def _corners(bounds) -> np.ndarray:

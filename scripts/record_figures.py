@@ -113,10 +113,12 @@ MOORING_FIGURES = ("stress_range.png", "fretting_map.png", "deformed_axial_force
 
 
 def _commit() -> str:
-    """The checkout's commit, "+changes" where its tracked files differ from it."""
+    """The checkout's commit, "+changes" where its tracked files outside docs/_static (what
+    this script writes) differ from it."""
     git = ["git", "-C", str(ROOT)]
     head = subprocess.run([*git, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    dirty = subprocess.run([*git, "diff", "--quiet", "HEAD"]).returncode
+    dirty = subprocess.run([*git, "diff", "--quiet", "HEAD", "--", ".", ":!docs/_static"])
+    dirty = dirty.returncode
     return head.stdout.strip() + ("+changes" if dirty else "")
 
 

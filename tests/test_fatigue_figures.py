@@ -5,6 +5,7 @@ T–N curves."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -14,7 +15,7 @@ import strand.app.plots as plots
 from strand.app.case import case_from_dict
 from strand.app.fatigue.findings import ElementResults
 from strand.app.fatigue.spectrum import spectrum_report, write_spectrum
-from strand.app.fatigue.spectrum_figure import spectrum_figure_data
+from strand.app.fatigue.spectrum_figure import spectrum_figure, spectrum_figure_data
 from strand.app.fatigue.stress_range import largest_range, layer_envelope, stress_range_figure
 from strand.app.fatigue.wire_stresses import wire_results
 from strand.fatigue import SN_CURVES
@@ -118,6 +119,17 @@ def test_stress_range_draws_every_layer_and_stars_the_largest_in_the_core(tmp_pa
     (on_curve,) = [ln for ln in sn.lines if ln.get_gid() == "largest"]
     assert on_curve.get_xdata()[0] == pytest.approx(STEEL.life(210e6))
     assert "not assessed: layer 2" in sn.get_title()
+
+
+def test_stress_range_names_the_mean_stress_correction_its_curve_leaves_out(tmp_path, drawn):
+    report = replace_ns(report_of(three_layers(), [STEEL] * 3), mean_stress="swt")
+    stress_range_figure(tmp_path / "stress_range.png", report)
+    title = drawn["stress_range.png"]._suptitle.get_text()
+    assert "the damage takes the swt mean-stress correction, the curve the ranges" in title
+
+
+def replace_ns(namespace: SimpleNamespace, **changes) -> SimpleNamespace:
+    return SimpleNamespace(**{**vars(namespace), **changes})
 
 
 # --- spectrum.png ---------------------------------------------------------------------------
@@ -235,3 +247,19 @@ def test_the_spectrum_figure_shows_each_class_damage_and_its_place_on_the_curves
     other.mkdir()
     write_spectrum(other, _spectrum_case(plots=False), _results(), "lateral", "N")
     assert not (other / "spectrum.png").exists() and (other / "spectrum.txt").is_file()
+
+
+def test_the_spectrum_figure_says_what_its_bars_include_that_its_curves_do_not(tmp_path, drawn):
+    """With a mean-stress correction and a design fatigue factor, the title names both: the bars
+    include them, the curves and the points on them do not."""
+    results = _results()
+    report = spectrum_report(_spectrum_case(), results, "lateral", "N")
+    data = spectrum_figure_data(report, [r.fatigue for r in results], MBS)
+    spectrum_figure(
+        tmp_path / "spectrum.png", replace(data, mean_stress="goodman", design_factor=3)
+    )
+    title = drawn["spectrum.png"]._suptitle.get_text()
+    assert "the goodman mean-stress correction" in title
+    assert "the design fatigue factor 3" in title
+    spectrum_figure(tmp_path / "spectrum.png", data)
+    assert "\n" not in drawn["spectrum.png"]._suptitle.get_text()

@@ -263,3 +263,18 @@ def test_the_spectrum_figure_says_what_its_bars_include_that_its_curves_do_not(t
     assert "the design fatigue factor 3" in title
     spectrum_figure(tmp_path / "spectrum.png", data)
     assert "\n" not in drawn["spectrum.png"]._suptitle.get_text()
+
+
+def test_without_a_tension_cycle_the_spectrum_figure_leaves_t_n_out(tmp_path, drawn):
+    """No member's tension cycles (a saddle spectrum): the bars and the curves are the wire's
+    alone, and the title says why."""
+    results = _results()
+    for r in results:
+        r.fatigue.tension_check.cycle = False
+    write_spectrum(tmp_path, _spectrum_case(), results, "lateral", "N")
+    fig = drawn["spectrum.png"]
+    bars, curves = fig.axes[:2]
+    assert {bar.get_gid() for bar in bars.patches} == {"bars 0", "bars 1"}
+    gids = {ln.get_gid() for ln in curves.lines} - {None}
+    assert gids == {"curve wire", "count wire 0", "life wire 0", "count wire 1", "life wire 1"}
+    assert "no tension cycle in any class" in fig._suptitle.get_text()

@@ -78,6 +78,8 @@ class SpectrumFigure:
         places: the element of largest D, then the other zone's (where it has an assessed
             element); none where no wire is assessed.
         tension_range: (A,) each member's largest tension range ΔT, N.
+        tension_cycles: some member's tension cycles (``findings.TensionCheck.cycle``); else
+            the T–N curves see next to no damage and the figure leaves them out.
         area: the strand's metallic area, m².
         dnv: (A,) DNV-OS-E301's nᵢ D_T,i.
         api: (A,) API RP 2SK's nᵢ D_T,i (None: no breaking strength given).
@@ -93,6 +95,7 @@ class SpectrumFigure:
     counts: Array
     places: list[WirePlace]
     tension_range: Array
+    tension_cycles: bool
     area: float
     dnv: Array
     api: Array | None
@@ -145,6 +148,7 @@ def spectrum_figure_data(
         counts=np.asarray(report.counts, float),
         places=_worst_places(report, members),
         tension_range=np.asarray(report.tension.range, float),
+        tension_cycles=bool(np.any(report.tension.cycle)),
         area=checks[0].area,
         dnv=report.counts * np.array([c.dnv for c in checks]),
         api=api,
@@ -180,10 +184,17 @@ def _series(data: SpectrumFigure) -> list[tuple[str, Array, str]]:
         (f"{place.name()}: D = {place.damage.sum():.3g}", place.damage, colour)
         for place, colour in zip(data.places, WIRE_COLOURS, strict=False)
     ]
+    if not data.tension_cycles:
+        return series
     series.append((f"DNV-OS-E301, T–N: D = {data.dnv.sum():.3g}", data.dnv, DNV_COLOUR))
     if data.api is not None:
         series.append((f"API RP 2SK, T–N: D = {data.api.sum():.3g}", data.api, API_COLOUR))
     return series
+
+
+def _share(share: float) -> str:
+    """A share of a damage in per cent, "<1 %" under one."""
+    return "<1 %" if 0 < share < 0.005 else f"{100 * share:.0f} %"
 
 
 def _damage_panel(ax, data: SpectrumFigure) -> None:
@@ -203,7 +214,7 @@ def _damage_panel(ax, data: SpectrumFigure) -> None:
         )
         total = np.nansum(damage)
         if len(x) <= 6 and total > 0:
-            ax.bar_label(bars, [f"{100 * d / total:.0f} %" for d in damage], fontsize=6)
+            ax.bar_label(bars, [_share(d / total) for d in damage], fontsize=6)
     ax.set_yscale("log")
     ax.set_xticks(
         x,
@@ -321,7 +332,9 @@ def _curves_panel(ax, data: SpectrumFigure) -> None:
     (counts, lives and ranges)."""
     n = np.logspace(1, 13, 400)
     wire_lives, wire_ranges = _wire_classes(ax, data, n)
-    tension_lives, tension_ranges = _tension_classes(ax, data, n)
+    tension_lives, tension_ranges = [], []
+    if data.tension_cycles:
+        tension_lives, tension_ranges = _tension_classes(ax, data, n)
     ax.plot([], [], "k.", ms=7, label="class: its count nᵢ in the period")
     ax.plot([], [], "ko", mfc="none", label="class: its cycles to failure Nᵢ")
     cycles = _positive([*wire_lives, *tension_lives, data.counts])
@@ -331,18 +344,21 @@ def _curves_panel(ax, data: SpectrumFigure) -> None:
         _decade_labels(ax.yaxis)
     if len(cycles):
         ax.set_xlim(max(cycles.min() / 30, n[0]), min(cycles.max() * 10, n[-1]))
+    tn = data.tension_cycles
     ax.set(
         xlabel="cycles",
-        ylabel="stress range (MPa): wire Δσ (S–N), nominal ΔT/A (T–N)",
-        title="wire S–N beside T–N: each class's count and life",
+        ylabel="stress range (MPa): wire Δσ (S–N)" + (", nominal ΔT/A (T–N)" if tn else ""),
+        title=f"wire S–N{' beside T–N' if tn else ''}: each class's count and life",
     )
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), frameon=False)
 
 
 def _note(data: SpectrumFigure) -> str:
-    """What the damages include that the curves do not show."""
+    """What the damages include that the curves do not show, and what the figure leaves out."""
     parts = []
+    if not data.tension_cycles:
+        parts.append("no tension cycle in any class: the T–N curves see next to no damage")
     if data.mean_stress != "none":
         parts.append(f"the wire damage takes the {data.mean_stress} mean-stress correction")
     if data.design_factor != 1:

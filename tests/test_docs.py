@@ -233,6 +233,26 @@ def test_the_figures_are_small():
     assert large == []
 
 
+def test_the_mooring_page_shows_its_recorded_figures_with_their_stamp():
+    """Each figure ``scripts/record_figures.py --mooring`` recorded is on docs/mooring.md, its
+    caption stamped with the recording's date and commit (``stamp.txt``), and the page gives
+    the command that drew them."""
+    folder = DOCS / "_static" / "mooring"
+    stamp = dict(line.split(": ", 1) for line in (folder / "stamp.txt").read_text().splitlines())
+    assert "+changes" not in stamp["commit"], stamp
+    page = (DOCS / "mooring.md").read_text()
+    figures = re.findall(r"```\{figure\} _static/mooring/(\S+)\n(.*?)```", page, re.S)
+    shown = {name: caption for name, caption in figures}
+    assert set(shown) == {p.name for p in folder.glob("*.png")} and len(shown) == 4
+    for name, caption in shown.items():
+        assert f"`{name}`" in caption, name
+        assert f"({stamp['date']}, commit {stamp['commit']})" in caption, name
+    commands = [
+        " ".join(c.replace("\\\n", " ").split()) for c in re.findall(r"```\n(.*?)```", page, re.S)
+    ]
+    assert stamp["command"] in commands
+
+
 def test_the_theory_writes_its_formulas_as_maths():
     text = (DOCS / "theory.md").read_text()
     prose = re.sub(r"\$\$.*?\$\$", "", text, flags=re.S)

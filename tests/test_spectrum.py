@@ -533,6 +533,30 @@ def test_the_spectrum_text_gives_each_layer_and_the_tension_check(spectrum_run):
     assert f"DNV-OS-E301 spiral rope: D = {dnv:.3g}" in text
 
 
+def test_the_spectrum_figure_shows_the_runs_classes_at_its_worst_wire(spectrum_run):
+    """spectrum.png's data (``spectrum_figure_data``) of the run: its two classes and counts,
+    the worst place spectrum.csv names first, its classes' damages summing to its D, each its
+    member's range there (wire_stresses.csv), and DNV-OS-E301's per class summing to the
+    spectrum's."""
+    from strand.app.fatigue.spectrum_figure import spectrum_figure_data
+
+    case, folder, results = spectrum_run
+    report = spectrum_report(case, results[1:], "lateral", "N")
+    data = spectrum_figure_data(report, [r.fatigue for r in results[1:]])
+    assert data.amplitudes.tolist() == [150.0, 300.0] and data.counts.tolist() == [1e6, 1e4]
+    worst = max(
+        (r for r in _rows(folder / "spectrum.csv") if r["damage"] != "nan"),
+        key=lambda r: float(r["damage"]),
+    )
+    place = data.places[0]
+    assert (place.element, place.wire) == (int(worst["element"]), int(worst["wire"]))
+    assert place.damage.sum() == pytest.approx(float(worst["damage"]), rel=2e-5)
+    for amplitude, delta in zip((150, 300), place.range, strict=True):
+        row = _rows(folder / f"lateral_{amplitude}" / "wire_stresses.csv")[place.element]
+        assert 1e-6 * delta == pytest.approx(float(row["range_MPa"]), rel=1e-5)
+    assert data.dnv.sum() == pytest.approx(report.tension.dnv, rel=1e-12) and data.api is None
+
+
 def _fake_member(damage: float, curve: str | None):
     """A member's fatigue report as the spectrum reads it: one wire of two elements (free, clamp)
     and one pair, ``damage`` per cycle (NaN: no curve)."""

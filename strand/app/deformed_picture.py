@@ -12,7 +12,20 @@ import numpy as np
 
 from ..cable.pictures import offscreen_plotter, save
 
-__all__ = ["deformed_picture", "magnification", "fit_text", "text_extent"]
+__all__ = [
+    "deformed_picture",
+    "magnification",
+    "fit_text",
+    "text_extent",
+    "STRAND_REGION",
+    "parallel_frame",
+    "projected_extent",
+]
+
+#: where the strand and its rulers go in the picture (fractions of its width and height: x from,
+#: x to, y from, y to): below the title, above the colour bar, room on the right for the
+#: deflection ruler's labels and below for the z ruler's
+STRAND_REGION = (0.05, 0.85, 0.27, 0.84)
 
 
 def magnification(largest: float, size: float) -> float:
@@ -27,32 +40,31 @@ def magnification(largest: float, size: float) -> float:
 
 def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") -> Path:
     """The outer layer over the middle of the span (30 %, at least 12 strand diameters), deformed
-    at the largest load and coloured by wire axial force, seen across the load. Displacements are
-    magnified (``magnification``: the largest across the strand's axis shown as up to half the
-    strand's diameter), the factor in the title (two lines, shrunk to fit the picture:
-    ``fit_text``); two rulers give the scale: z along the strand (mm, true scale) under it, and
-    beyond its right end the deflection (mm, as magnified) down from the undeformed axis.
-    ``at_peak``: the largest load as the title gives it (``SetupKind.load_text``)."""
-    import pyvista
-
-    g = problem.geometry
-    peak, L = result.peak, case.mesh.length
-    D = case.cable.outer_diameter
+    at the largest load and coloured by wire axial force, seen across the load (``_tubes``).
+    Displacements across the axis are magnified (``magnification``: the largest shown as up to
+    half the strand's diameter), along it at true scale, the factor in the title (two lines,
+    shrunk to fit the picture: ``fit_text``); two rulers give the scale: z along the strand (mm,
+    true scale) under the tubes, and
+    beyond its right end the deflection (mm, as magnified) down from the undeformed axis. The
+    camera frames the tubes and the rulers within ``STRAND_REGION`` (``parallel_frame``), in a
+    picture 650 pixels high and as wide as they need (1100–1800): a strand a few diameters long
+    is in view as a long one is. ``at_peak``: the largest load as the title gives it
+    (``SetupKind.load_text``)."""
+    L, D = case.mesh.length, case.cable.outer_diameter
     half = min(L / 2, max(0.15 * L, 6 * D))
-    outer = len(case.cable.layers) - 1
-    shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
-    u = result.peak_w[:, :3]  # the geometry's point order, whole on every rank
-    factor = magnification(float(np.abs(u[g.cells[shown], :2]).max(initial=0.0)), D)
-    x = g.points + factor * u
-    lines = np.column_stack([np.full(len(shown), 2), g.cells[shown]]).ravel()
-    grid = pyvista.PolyData(x, lines=lines)
-    grid.cell_data["N (N)"] = peak.axial[shown]
-    radius = case.cable.layers[-1].wire.diameter / 2
-    grid = grid.cell_data_to_point_data().tube(radius=radius, n_sides=16)
-    width, height = 1800, 650
+    grid, factor = _tubes(case, result, problem.geometry, half)
+    d = np.asarray(case.load.direction, float) * np.sign(result.peak_step.load or 1.0)
+    axis = np.array([0.0, 0.0, 1.0])
+    start, end = (L / 2 - half) * axis, (L / 2 + half) * axis
+    below = d * (np.max(grid.points @ d) + 0.2 * D)  # the picture's down is d: under the tubes
+    beside = (grid.bounds[5] + max(0.15 * half, 0.3 * D)) * axis
+    content = np.vstack([_corners(grid.bounds), start + below, end + below, beside])
+    height = 650
+    width = _width(content, axis, -d, height)
     plotter = offscreen_plotter(window_size=(width, height))
     plotter.add_mesh(
         grid,
+        name="strand",
         scalars="N (N)",
         cmap="coolwarm",
         scalar_bar_args={
@@ -69,8 +81,11 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
             "color": "black",
         },
     )
-    P = result.peak_step.load
-    shown_as = f"displacements magnified {factor:g}×" if factor > 1 else "displacements true scale"
+    shown_as = (
+        f"displacements across the axis magnified {factor:g}×"
+        if factor > 1
+        else "displacements true scale"
+    )
     title = plotter.add_text(
         f"{case.cable.name}: wire axial force in the outer layer within ±{half * 1e3:.0f} mm of "
         f"midspan\nat {at_peak} (downwards), T = {case.load.tension / 1e3:g} kN; "
@@ -85,10 +100,6 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
     title.GetTextProperty().SetVerticalJustificationToTop()
     if note:
         plotter.add_text(note, position="lower_left", font_size=9, color="red")
-    d = np.asarray(case.load.direction, float) * np.sign(P or 1.0)
-    axis = np.array([0.0, 0.0, 1.0])
-    start, end = (L / 2 - half) * axis, (L / 2 + half) * axis
-    below = d * 1.25 * D  # the picture's down is d: under the deflected strand
     along = plotter.add_ruler(
         start + below,
         end + below,
@@ -101,8 +112,7 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
     )
     along.SetRange(1e3 * start[2], 1e3 * end[2])
     step = _round_length(D / (2 * factor))  # a displacement shown as up to D/2
-    beside = end + 0.15 * half * axis
-    plotter.add_ruler(
+    deflection = plotter.add_ruler(
         beside + d * step * factor,
         beside,
         flip_range=True,
@@ -114,18 +124,87 @@ def deformed_picture(case, result, problem, path, at_peak: str, note: str = "") 
         label_color="black",
         tick_color="black",
     )
+    deflection.SetTitlePosition(-0.15)  # under the ruler, clear of its two labels
     # seen across the load, the load downwards and z to the right, in parallel projection: the
-    # shown length over 80 % of the width, a little left of the middle, the axis above it (set
-    # after the rulers, which reset the camera)
-    plotter.view_vector(-np.cross(axis, d), viewup=-d)
-    plotter.enable_parallel_projection()
-    plotter.reset_camera()
-    camera, middle = plotter.camera, (L / 2 + 0.1 * half) * axis + 0.5 * D * d
-    camera.position = middle + (np.asarray(camera.position) - np.asarray(camera.focal_point))
-    camera.focal_point = middle
-    camera.parallel_scale = 2 * half / 0.8 / (width / height) / 2
+    # strand and its rulers fill STRAND_REGION (set after the rulers, which reset the camera)
+    focal, scale = parallel_frame(content, axis, -d, width / height)
+    camera = plotter.camera
+    camera.parallel_projection = True
+    camera.focal_point = focal
+    camera.position = focal - np.cross(axis, d) * 10 * (np.ptp(content, axis=0).max() + D)
+    camera.up = -d
+    camera.parallel_scale = scale
+    plotter.renderer.ResetCameraClippingRange()
     fit_text(plotter, title)
     return save(plotter, path)
+
+
+def _tubes(case, result, geometry, half: float):
+    """The outer layer's wires within ±``half`` (m) of midspan as tubes, displaced at the
+    largest load, coloured by axial force ("N (N)"); the displacements across the axis
+    magnified (``magnification``), along it at true scale as the z ruler reads them. The tubes
+    and the factor."""
+    import pyvista
+
+    peak, L = result.peak, case.mesh.length
+    outer = len(case.cable.layers) - 1
+    shown = np.flatnonzero((peak.layer == outer) & (np.abs(peak.z - L / 2) <= half))
+    u = result.peak_w[:, :3]  # the geometry's point order, whole on every rank
+    across = float(np.abs(u[geometry.cells[shown], :2]).max(initial=0.0))
+    factor = magnification(across, case.cable.outer_diameter)
+    x = geometry.points + u * np.array([factor, factor, 1.0])
+    lines = np.column_stack([np.full(len(shown), 2), geometry.cells[shown]]).ravel()
+    grid = pyvista.PolyData(x, lines=lines)
+    grid.cell_data["N (N)"] = peak.axial[shown]
+    radius = case.cable.layers[-1].wire.diameter / 2
+    return grid.cell_data_to_point_data().tube(radius=radius, n_sides=16), factor
+
+
+def _corners(bounds) -> np.ndarray:
+    """The eight corners (8, 3) of the box ``bounds`` (x0, x1, y0, y1, z0, z1)."""
+    x, y, z = np.asarray(bounds, float).reshape(3, 2)
+    return np.array([[a, b, c] for a in x for b in y for c in z])
+
+
+def _width(content: np.ndarray, right, up, height: int) -> int:
+    """The picture's width (pixels, 1100–1800) for ``content`` (points, m) seen with ``right``
+    and ``up`` in STRAND_REGION of a picture ``height`` high: a short, thick strand gets a
+    narrower picture than a long, thin one."""
+    x0, x1, y0, y1 = STRAND_REGION
+    wide = np.ptp(content @ right) / (x1 - x0)
+    high = np.ptp(content @ up) / (y1 - y0)
+    return int(np.clip(height * wide / max(high, 1e-300), 1100, 1800))
+
+
+def parallel_frame(content, right, up, aspect: float, region=STRAND_REGION):
+    """The focal point and parallel scale (half the picture's height, m) that put the points
+    ``content`` (m) seen with ``right`` and ``up`` (unit vectors) within ``region`` (fractions
+    of the picture: x from, x to, y from, y to) of a picture of width/height ``aspect``, filling
+    it in one direction and centred in it in the other."""
+    right, up = np.asarray(right, float), np.asarray(up, float)
+    content = np.asarray(content, float)
+    x, y = content @ right, content @ up
+    x0, x1, y0, y1 = region
+    scale = max(np.ptp(x) / (2 * aspect * (x1 - x0)), np.ptp(y) / (2 * (y1 - y0)))
+    width, height = 2 * scale * aspect, 2 * scale
+    along = (x.min() + x.max()) / 2 - ((x0 + x1) / 2 - 0.5) * width
+    across = (y.min() + y.max()) / 2 - ((y0 + y1) / 2 - 0.5) * height
+    return along * right + across * up, float(scale)
+
+
+def projected_extent(plotter, points) -> tuple[float, float, float, float]:
+    """Where the points (m) lie in the rendered picture: pixels x0, x1, y0, y1 (y up)."""
+    import vtk
+
+    plotter.render()
+    coordinate = vtk.vtkCoordinate()
+    coordinate.SetCoordinateSystemToWorld()
+    xy = []
+    for p in np.asarray(points, float):
+        coordinate.SetValue(*p)
+        xy.append(coordinate.GetComputedDoubleDisplayValue(plotter.renderer))
+    xy = np.array(xy)
+    return xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max()
 
 
 def _round_length(length: float) -> float:

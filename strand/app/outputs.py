@@ -143,9 +143,10 @@ register_output(
         "axial_force_sectors.png": "figure: wire axial forces per layer and sector",
         "axial_force_change.png": "figure: change of wire axial forces over the cycle",
         "deformed_axial_force.png": "figure: the deformed strand coloured by axial force "
-        "(displacements magnified, factor in the title)",
+        "(displacements across the axis magnified, factor in the title)",
         "fretting_map.png": "figure: the contact pairs that slid, per interface",
-        "stress_range.png": "figure: stress ranges against the S-N curve",
+        "stress_range.png": "figure: every layer's stress ranges, the largest marked, "
+        "against the S-N curves",
         "layer_pressure.png": "figure: per layer, its pressure on the crossings below, its "
         "same-layer ring's share and the fibre model, tensioned and at the peak",
     },

@@ -116,6 +116,8 @@ def run_sweep(
 
         text = write_spectrum(top, case, results, parameter, problem.setup.units[parameter])
         print(text, file=stream, end="", flush=True)
+        if case.output.plots and (top / "spectrum.png").is_file():
+            print(f"figure: {top / 'spectrum.png'}", file=stream, flush=True)
     return [tensioned, *results]
 
 

@@ -172,7 +172,8 @@ def _share_columns(report: SpectrumReport, shares: Array) -> dict[str, Array]:
 
 
 def write_spectrum(folder: Path, case: Case, results: list, parameter: str, unit: str) -> str:
-    """Write ``spectrum.csv``, ``spectrum_crossings.csv`` and ``spectrum.txt`` into the sweep's
+    """Write ``spectrum.csv``, ``spectrum_crossings.csv``, ``spectrum.txt`` and (``[output]
+    plots``) ``spectrum.png`` (``strand.app.fatigue.spectrum_figure``) into the sweep's
     ``folder``; return the text (only ``spectrum.txt``, with the reason, where a member cannot
     give its damage)."""
     folder = Path(folder)
@@ -214,4 +215,10 @@ def write_spectrum(folder: Path, case: Case, results: list, parameter: str, unit
             },
         )
     (folder / "spectrum.txt").write_text(report.text)
+    if case.output.plots:
+        from .spectrum_figure import spectrum_figure, spectrum_figure_data
+
+        members = [r.fatigue for r in results]
+        data = spectrum_figure_data(report, members, case.fatigue.breaking_strength)
+        spectrum_figure(folder / "spectrum.png", data)
     return report.text

@@ -133,3 +133,16 @@ if comm.rank == 0:
     plotter.add_mesh(tube, cmap="viridis", clim=[0.0, 1.2 * M_full])
     plotter.view_xy()
     print("picture:", save(plotter, out / "rollup.png"))
+
+# ## Exercises
+#
+# 1. **Half a circle.** Stop the ramp at half the moment (`stepper.ramp(..., 0.0, 0.5)`, and drop
+#    the check that the tip is back at the root). Predict where the tip is before running.
+#    *Answer:* $\kappa L = \pi$: the beam is a half circle of diameter $2L/\pi$, its tip right
+#    above the root ($x$ = **0.000 m**) at $y = 2L/\pi$ = **0.637 m**, pointing back along
+#    $-e_x$.
+# 2. **One and a half turns.** Ramp to $1.5\,M_{full}$. Where is the tip, and by how much has its
+#    section turned? (The rotation vector is total, not wrapped to $(-\pi, \pi]$: neighbouring
+#    nodes only need to differ by less than $\pi$.)
+#    *Answer:* $\kappa L = 3\pi$, so $y = (1 - \cos 3\pi)/\kappa = 2L/3\pi$ = **0.212 m** above
+#    the root, and $\theta_z$ = **3.000** $\pi$.

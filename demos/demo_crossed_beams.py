@@ -254,3 +254,16 @@ if comm.rank == 0:  # one process draws
     ax.grid(alpha=0.3)
     fig.savefig(out / "microslip_loop.png", dpi=120, bbox_inches="tight")
     print("picture:", out / "microslip_loop.png")
+
+# ## Exercises
+#
+# 1. **Change μ and predict the loop's width.** Set $\mu = 0.2$ (in `mu, P, K_N, g_lim`; the
+#    microslip loop then reaches gross slip, past its closed form: drop its energy check). The
+#    loop's width at $Q = 0$ is $2(s_a - \mu P/k)$ for the shear amplitude $s_a$ = 30 µm; mind
+#    that $k$ depends on μ through $K_T = \mu P/g_{lim}$.
+#    *Answer:* $k$ = 1.024e6 N/m, width **40.5** µm by the closed form and **40.5** µm measured
+#    on the last cycle (35.7 µm with μ = 0.3): less friction, a wider loop at this amplitude.
+# 2. **The energy lost per cycle.** With μ = 0.3, what is the parallelogram's area, the energy
+#    friction dissipates in one cycle?
+#    *Answer:* $W = 4\mu P\,(s_a - \mu P/k)$ = **1071** µJ, and the area of the last cycle's
+#    steps, $\oint Q\,ds$, is **1071** µJ.

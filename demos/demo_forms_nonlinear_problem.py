@@ -179,3 +179,14 @@ if comm.rank == 0:
     ax.legend(loc="lower right")
     fig.savefig(out / "cantilever.png", dpi=120, bbox_inches="tight")
     print("picture:", out / "cantilever.png")
+
+# ## Exercises
+#
+# 1. **A smaller load.** Set $PL^2/EI = 1$ (`P = 1 * E * ...`, and drop the two checks against
+#    the values at 10). How far below linear theory's $v/L = PL^2/3EI$ is the tip?
+#    *Answer:* $v/L$ = **0.3017** (Mattiasson's 0.30172), **9.5** % below $1/3$: even at
+#    $PL^2/EI = 1$ the shortening of the lever arm counts.
+# 2. **Coarser.** Use 20 cells instead of 40 (`n`), back at $PL^2/EI = 10$. How much does the tip
+#    move?
+#    *Answer:* $v/L$ = **0.81056**, 5e-5 below the 40 cells' 0.81061: two-node cells with one
+#    Gauss point are slightly stiff in bending, by $O(1/n^2)$.

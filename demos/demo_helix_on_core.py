@@ -243,3 +243,14 @@ if comm.rank == 0:
     fig.tight_layout()
     fig.savefig(out / "helix_on_core.png", dpi=120)
     print("picture:", out / "helix_on_core.png")
+
+# ## Exercises
+#
+# 1. **A shorter lay.** Lay the wire at 10° instead of 15°. Predict the line load at $T_0$.
+#    *Answer:* $q = T_0\sin^2\alpha/r$ with the tension found, 993 N: **4.99** kN/m by the
+#    closed form and **4.99** kN/m from the pairs (10.8 kN/m at 15°): $\sin^2\alpha$ falls by more
+#    than half.
+# 2. **More friction.** Set $\mu = 0.5$. Where does the slip front stand?
+#    *Answer:* for the aimed $T_B = 1.8\,T_0$ the slip zone is $\ln 1.8/(\mu\kappa)$ long, the
+#    front at **195** mm from A; strand reaches $T_B$ = **1710** N (short of the aim, as with
+#    μ = 0.3), so its front stands a little further out, at **198** mm (129 mm with μ = 0.3).

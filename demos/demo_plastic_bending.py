@@ -300,3 +300,16 @@ if comm.rank == 0:
     fig.tight_layout()
     fig.savefig(out / "plastic_bending.png", dpi=120)
     print("picture:", out / "plastic_bending.png")
+
+# ## Exercises
+#
+# 1. **Deeper.** Lift wire a to $\delta_{max}$ = 1.5 mm. Does the unloading stay elastic, and
+#    what residual curvature is left at the clamp?
+#    *Answer:* $P_{max}L/M_y$ = **1.71**, still below 2: elastic unloading. At the clamp's cell,
+#    $\kappa_{res} = (P_{max}(L - x_m) - M_y)/H$ = **1.075** 1/m, and strand finds
+#    **1.075** 1/m.
+# 2. **Softer hardening.** Back at 1.25 mm, halve the hardening: $H = EI/8$. Predict which way
+#    the peak force and the residual curvature go.
+#    *Answer:* the wire yields more easily, so the peak force falls, $P_{max}L/M_y$ = **1.41**
+#    (1.57 with $H = EI/4$), yet the residual curvature rises: at the clamp's cell
+#    $\kappa_{res}$ = **1.23** 1/m by the closed form and **1.23** 1/m by strand (0.873 before).

@@ -201,3 +201,16 @@ if comm.rank == 0:
     fig.tight_layout()
     fig.savefig(out / "section_law.png", dpi=120)
     print("picture:", out / "section_law.png")
+
+# ## Exercises
+#
+# 1. **A sharper knee.** Set $\kappa_b = 0.5$ 1/m. Which moment bends the rod into half a circle
+#    now? (A new $\kappa_b$ is a new number in the UFL forms: the first run compiles a kernel.)
+#    *Answer:* $M(\pi/L) = EI_{min}\pi + (EI_{max} - EI_{min})\,\kappa_b\tanh(2\pi)$ = **78.8** N m
+#    (124.8 N m with $\kappa_b = 1$), and the tip turns by **1.000** $\pi$ under it.
+# 2. **The stiff rod's moment.** Load the softening rod with the moment that bends a linear rod
+#    of stiffness $EI_{max}$ into half a circle, $M = \pi EI_{max}/L$ (drop the check against
+#    the sagitta bound, which assumes half a circle). How far does it bend?
+#    *Answer:* $0.1\,\kappa + 0.9\tanh\kappa = \pi$ (in 1/m, with $\kappa_b$ = 1 1/m), so
+#    $\kappa = 10\pi - 9$ = **22.42** 1/m, as the tip rotation over $L$ finds (**22.42** 1/m):
+#    the rod winds **3.57** times round.

@@ -166,3 +166,13 @@ assert unloading > 1.5 * last_loading
 # `load_deflection.png`, `moment_curvature.png`, `axial_force_sectors.png`,
 # `axial_force_change.png` and `deformed_axial_force.png`; the fields of the first run are in
 # `fields.xdmf` for ParaView.
+
+# ## Exercises
+#
+# 1. **The quick case's bounds.** What are the bending stiffness bounds of the README's quick
+#    case, the 1+6 steel strand of `cases/quick_1x6.toml`? Use `bending_stiffness_bounds`.
+#    *Answer:* $EI_{min}$ = **7.9** N m² and $EI_{max}$ = **59.8** N m²: stuck, the strand is
+#    almost eight times stiffer than its wires bending each about its own axis.
+# 2. **Who carries the tension?** With the fibre model, what share of Cardinal's 40 kN do its
+#    seven steel wires carry (core and layer 1)? Sum $n\cos\alpha\,F$ over the two layers.
+#    *Answer:* **28.3** %, for 7 of the 61 wires: steel is three times as stiff as aluminium.

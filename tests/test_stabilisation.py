@@ -103,32 +103,26 @@ class HeldSolver(PathSolver):
         return super().solve()
 
 
-def test_a_settling_first_step_is_held_before_it_is_cut_and_released_once_committed():
-    """A settling ramp's first step (pairs closing with no friction yet) that fails is tried
-    again held, at the same increment; the springs are off from the next step on."""
+def test_a_step_whose_cuts_are_exhausted_is_held_from_its_first_increment_then_released():
+    """A step that fails however cut (the next cut would go under ``min_step``) is tried again
+    held, from the increment it was first tried at; the springs are off from the next step on."""
     held = Held()
     stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
     solver = HeldSolver(held, fails=lambda lam: lam <= 0.25)
     _, records = ramp(
-        solver,
-        0.0,
-        1.0,
-        first_step=0.25,
-        min_step=0.01,
-        growth=1.0,
-        settles=True,
-        stabiliser=stabiliser,
+        solver, 0.0, 1.0, first_step=0.25, min_step=0.01, growth=1.0, stabiliser=stabiliser
     )
-    assert [r.load for r in records] == pytest.approx([0.25, 0.5, 0.75, 1.0])  # no cut
-    assert solver.states == [None, K_S, None, None, None]
+    assert [r.load for r in records] == pytest.approx([0.25, 0.5, 0.75, 1.0])
+    assert records[0].cuts == 4  # 0.25 → 0.0156: the cut to 0.0078 would go under min_step
+    assert solver.states == [None] * 5 + [K_S] + [None] * 3
     assert [r.stabilisation for r in records] == pytest.approx([0.025, 0, 0, 0])
     assert held.stiffness is None and not stabiliser.on
 
 
-def test_elsewhere_a_step_is_held_only_once_cuts_are_exhausted():
-    """Past a ramp's first step a failed step is cut as without springs (a converged run stays
-    the same); only where the next cut would go under ``min_step`` is it held, as a last
-    resort, at the increment that failed, and the ramp then goes on."""
+def test_a_step_is_cut_as_without_springs_and_held_only_once_cuts_are_exhausted():
+    """A failed step is cut as without springs (a run that converged stays the same); only
+    where the next cut would go under ``min_step`` is it held, as a last resort, and the ramp
+    then goes on through the loads where it has its near-mechanism."""
     held = Held()
     stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
     solver = HeldSolver(held, fails=lambda lam: 0.3 < lam <= 0.5)  # a near-mechanism there

@@ -166,12 +166,12 @@ class LoadStepper:
         settles: the ramp's first step is no guide to the next (e.g. a strand's first
             tension step, in which its contact pairs close): no predictor, and no error
             estimate, is taken from it.
-        stabiliser: a ``Stabiliser``: the contact springs, switched on for a step that failed
-            (after its ``retry``) where it would otherwise be cut: in a settling ramp's first
-            step (where pairs close with no friction yet), else only once cuts are exhausted,
-            as a last resort; the step is then tried again at the same increment, and cut with
-            the springs on. They are switched off when it is committed, and their energy
-            fraction recorded (``StepRecord.stabilisation``). None (the default): none.
+        stabiliser: a ``Stabiliser``: the contact springs, a last resort for a step whose
+            cuts are exhausted (the next would go under ``min_step``): the step is tried again
+            from the increment it was first tried at, with the springs on, and cut again if
+            need be. They are switched off when it is committed, and their energy fraction
+            recorded (``StepRecord.stabilisation``). A run that converges without them is
+            unchanged, step for step. None (the default): none.
     """
 
     def __init__(
@@ -241,6 +241,8 @@ class LoadStepper:
             start_w = w.copy()
             if predict and previous is not None:  # secant predictor along the ramp
                 w += (trial - current) / previous[0] * previous[1]
+            if cuts == 0 and retries == 0 and not (self.stabiliser and self.stabiliser.on):
+                first_try = step  # the increment this step was first tried at
             result = self.solver.solve()
             lus += result.factorisations
             settling = self.settles and resume is None and not records
@@ -295,13 +297,13 @@ class LoadStepper:
                     predict = not self.extrapolate  # the same increment, predictor switched
                     continue
                 predict = self.extrapolate
-                held = self.stabiliser is not None and self.stabiliser.on
                 if (
                     self.stabiliser is not None
-                    and not held
-                    and (settling or step / 2 < self.min_step)
+                    and not self.stabiliser.on
+                    and step / 2 < self.min_step
                 ):
-                    self.stabiliser.switch(True)  # the same increment, held
+                    self.stabiliser.switch(True)  # cuts exhausted: the step again, held
+                    step = first_try
                     continue
                 step /= 2
                 cuts += 1

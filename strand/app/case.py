@@ -71,11 +71,11 @@ paper's test (docs/theory.md §4): Cardinal, 1 m, 40 kN, then the saddle cycle 0
     iteration = "newton"      # newton: an LU per iteration | reuse_lu: GMRES on each Jacobian with
                               #   an earlier one's LU | lbfgs: L-BFGS on a solve's first LU;
                               #   either falls back to Newton when it fails (docs/theory.md §6)
-    stabilise = 1e4           # N/m per pair: a first tension step that fails (or any step
-                              # once its cuts are exhausted) is tried again with springs on
-                              # every contact pair's slip (near-mechanisms: wires rolling round
-                              # the layer below), released when it converges; their energy over
-                              # the strain energy is reported; 0: off
+    stabilise = 1e4           # N/m per pair: a step whose cuts are exhausted is tried again
+                              # with springs on every contact pair's slip (near-mechanisms:
+                              # wires rolling round the layer below), released when it
+                              # converges; their energy over the strain energy is reported;
+                              # 0: off
     cuts = 6                  # halvings allowed before a step is declared failed
     max_iterations = 12       # Newton iterations per attempt
     stall = true              # cut an attempt whose residual has not halved in two iterations

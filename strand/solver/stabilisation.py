@@ -5,9 +5,8 @@ Newton stalls: the frictionless first tension step (a pair closing from zero for
 stiffness yet), a king wire whose layer's gaps are open, a vaulted ring. As Abaqus' contact
 stabilisation damps the relative motion of the surfaces, a ``Stabiliser`` holds every pair's
 tangential slip since the step's start, Δg_T, with a spring k (N/m), in the attempts that follow
-a failed one (``LoadStepper(stabiliser=…)``): at once in a settling ramp's first step (a strand's
-first tension step), elsewhere only once cuts are exhausted, so that a run that converged without
-springs converges as before. Nothing of the springs is committed: the next step starts without
+a failed one, once its cuts are exhausted (``LoadStepper(stabiliser=…)``), so that a run that
+converged without springs converges as before. Nothing of the springs is committed: the next step starts without
 them, so the forces they held at the converged step are handed to the friction that the closed
 pairs then carry.
 

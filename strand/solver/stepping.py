@@ -245,7 +245,6 @@ class LoadStepper:
                 first_try = step  # the increment this step was first tried at
             result = self.solver.solve()
             lus += result.factorisations
-            settling = self.settles and resume is None and not records
             if result.converged:
                 h, dw = trial - current, w - start_w
                 error, proposal = self._estimate(h, dw, previous, cuts)
@@ -257,6 +256,7 @@ class LoadStepper:
                     rejections += 1
                     predict = self.extrapolate
                     continue
+                settling = self.settles and resume is None and not records
                 previous = None if settling else (h, dw)
                 stabilisation = self._release()
                 self.solver.commit()

@@ -153,10 +153,12 @@ class PairGroup:
         self._law_history = friction_law.initial_history(n_pairs) if friction_law else {}
         self._law_next: dict[str, Array] = {}  # ... as the last evaluation leaves it
         self._new_step()
-        #: per-pair tangential stabilisation springs (N/m; None: off, ``stabilise``) and the
-        #: energy they held at the last evaluation (J)
+        #: per-pair stabilisation springs (N/m; None: off, ``stabilise``), the energy they held
+        #: at the last evaluation (J), and the gaps they hold to (m: those of the last commit,
+        #: or of the first evaluation, at the initial unknowns, before any)
         self._stabilisation: Array | None = None
         self.stabilisation_energy = 0.0
+        self._g_old: Array | None = None
         self.history = FrictionHistory.zeros(n_pairs)
         self.state = ContactState(
             np.zeros(n_pairs),
@@ -175,8 +177,10 @@ class PairGroup:
         self._choices: dict[str, Array] = {}
 
     def stabilise(self, stiffness: Array | float | None) -> None:
-        """Hold every pair's slip since the step's start Δg_T with a spring of ``stiffness``
-        (N/m, per pair or one for all; None: off): residual Sᵀ k Δg_T, tangent k SᵀS. A
+        """Hold every pair's relative motion since the step's start, its slip Δg_T and its
+        change of gap Δg_N, open pairs' as well, with a spring of ``stiffness`` (N/m, per pair
+        or one for all; None: off): residual Sᵀ k Δg_T + k Δg_N ∂g/∂q, tangent k SᵀS +
+        k ∂g/∂q ⊗ ∂g/∂q (the gap's curvature times k Δg_N, a few mN, is left out). A
         stabilisation of a step that would not converge (``strand.solver.stabilisation``),
         not a law: nothing of it is committed."""
         if stiffness is None:
@@ -215,6 +219,8 @@ class PairGroup:
         kin = self._kinematics(W, jacobian)
         p, dp_dg = self.normal_law.force(kin.gap)
         G = kin.gradient
+        if self._g_old is None:  # the first evaluation: the initial unknowns' gaps
+            self._g_old = kin.gap.copy()
         f = -p[:, None] * G
         K = None
         if jacobian:
@@ -226,7 +232,7 @@ class PairGroup:
         if self.friction or self._stabilisation is not None:
             S, dq = kin.slip()
         if self._stabilisation is not None:
-            self._add_stabilisation(S, dq, f, K)
+            self._add_stabilisation(S, dq, kin.gap - self._g_old, G, f, K)
         if self.friction:
             choices = self._choose(S, dq, jacobian)
             ft = self.friction_law.terms(
@@ -252,15 +258,21 @@ class PairGroup:
         self._last = W
         return f, K
 
-    def _add_stabilisation(self, S: Array, dq: Array, f: Array, K: Array | None) -> None:
-        """Add the springs of ``stabilise`` to the residual f and tangent K, in place."""
+    def _add_stabilisation(
+        self, S: Array, dq: Array, dg: Array, G: Array, f: Array, K: Array | None
+    ) -> None:
+        """Add the springs of ``stabilise`` on the slip S dq and the change of gap dg (gap
+        gradient G) to the residual f and tangent K, in place."""
         k = self._stabilisation
         slip = np.einsum("pij,pj->pi", S, dq)
         m = S.shape[2]
         f[:, :m] += np.einsum("pij,pi->pj", S, k[:, None] * slip)
+        f += (k * dg)[:, None] * G
         if K is not None:
             K[:, :m, :m] += k[:, None, None] * (S.transpose(0, 2, 1) @ S)
-        self.stabilisation_energy = 0.5 * float(np.einsum("p,pi,pi->", k, slip, slip))
+            K += k[:, None, None] * (G[:, :, None] * G[:, None, :])
+        energy = np.einsum("p,pi,pi->", k, slip, slip) + np.dot(k, dg * dg)
+        self.stabilisation_energy = 0.5 * float(energy)
 
     def commit(self) -> None:
         """Accept the last evaluated state (the converged one) as the history."""
@@ -283,6 +295,7 @@ class PairGroup:
         self._t_old = tangential_part(self.state.traction, n)  # onto the new tangent plane
         self._n_old = n.copy()
         self._p_old = self.state.force.copy()
+        self._g_old = self.state.gap.copy()
         self._commit_kinematics(self._last)
 
     def rollback(self) -> None:
@@ -339,6 +352,7 @@ class PairGroup:
         h = self.history
         h.slip[...], h.sliding[...], h.work[...] = a["slip"], a["sliding"], a["work"]
         self.state.fill(a["gap"], a["force"], a["traction"], a["normal"], a["slipping"])
+        self._g_old = np.array(a["gap"], copy=True)
         for k in self._law_history:
             self._law_history[k] = a[LAW + k]
         self._restore_kinematics_history(a)

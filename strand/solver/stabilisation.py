@@ -4,14 +4,15 @@ A strand whose wires can roll round the layer below at little cost has near-mech
 Newton stalls: the frictionless first tension step (a pair closing from zero force has no stick
 stiffness yet), a king wire whose layer's gaps are open, a vaulted ring. As Abaqus' contact
 stabilisation damps the relative motion of the surfaces, a ``Stabiliser`` holds every pair's
-tangential slip since the step's start, Δg_T, with a spring k (N/m), in the attempts that follow
-a failed one, once its cuts are exhausted (``LoadStepper(stabiliser=…)``), so that a run that
+relative motion since the step's start, its slip Δg_T and its change of gap Δg_N (open pairs'
+as well: a vaulted ring's radial mode), with a spring k (N/m), in the attempts that follow a
+failed one, once its cuts are exhausted (``LoadStepper(stabiliser=…)``), so that a run that
 converged without springs converges as before. Nothing of the springs is committed: the next step starts without
 them, so the forces they held at the converged step are handed to the friction that the closed
 pairs then carry.
 
 What they did is reported as Abaqus reports ALLSD beside ALLIE: the springs' energy at the
-converged step, ½ Σ k |Δg_T|², over the strain energy of the beams (a fraction; Abaqus' users
+converged step, ½ Σ k (|Δg_T|² + Δg_N²), over the strain energy of the beams (a fraction; Abaqus' users
 aim at a few per cent at most). Units: N/m, J.
 """
 
@@ -36,7 +37,7 @@ class Stabilised(Protocol):
 
 @dataclass
 class Stabiliser:
-    """Tangential springs of ``stiffness`` (N/m per pair) on ``groups``, switched on for the
+    """Springs of ``stiffness`` (N/m per pair) on ``groups``, switched on for the
     attempts of a step that follow a failed one; ``strain_energy()`` the beams' strain energy
     (J, summed over the ranks of ``comm``)."""
 

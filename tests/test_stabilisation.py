@@ -198,3 +198,52 @@ def test_a_vaulted_ring_starts_only_when_stabilised_and_the_springs_leave_no_tra
     strain = next(line for line in summaries[1e4].splitlines() if "strain (µε)" in line)
     model, fibre = (float(v) for v in strain.split()[2:4])
     assert model == pytest.approx(fibre, rel=0.02)
+
+
+def _stalling_solve(convergence, residuals: list[float]) -> tuple[int, int]:
+    """Feed a residual history to a SNES convergence test, as PETSc's Newton would: the
+    iteration it stops at and its reason (0: never stopped)."""
+    convergence.reset()
+    for its, r in enumerate(residuals):
+        convergence.record(r)
+        reason = convergence(None, its, (1.0, 1.0, r))
+        if reason != 0:
+            return its, reason
+    return len(residuals), 0
+
+
+def test_a_last_resort_is_patient_and_the_springs_make_it_so():
+    """Held attempts are a step's last: Newton's stall test (a residual not halved in two
+    iterations, from the 4th) is off and it may take ``LAST_RESORT_ITERATIONS`` times its
+    iterations; switched off,
+    the options hold again. The stabiliser makes the solver patient exactly while it is on."""
+    from petsc4py import PETSc
+
+    from strand.solver import NewtonOptions
+    from strand.solver.convergence import LAST_RESORT_ITERATIONS, NewtonConvergence
+
+    options = NewtonOptions(stall_after=4, max_it=12, atol=1e-9, rtol=0.0)
+    test = NewtonConvergence(options, PETSc.Vec().createSeq(6), MPI.COMM_SELF)
+    slow = list(10.0 * 0.8 ** np.arange(60))  # linear, 0.8 an iteration: converging slowly
+    reasons = PETSc.SNES.ConvergedReason
+    its, reason = _stalling_solve(test, slow)
+    assert (its, reason) == (4, reasons.DIVERGED_DTOL) and test.stalled
+    test.patience = LAST_RESORT_ITERATIONS * options.max_it
+    its, reason = _stalling_solve(test, slow)
+    assert (its, reason) == (test.patience, reasons.DIVERGED_MAX_IT) and test.patience > 12
+    assert not test.stalled
+    test.patience = None
+    assert _stalling_solve(test, slow)[0] == 4
+
+    class Solver:
+        patient: list[bool] = []
+
+        def last_resort(self, on):
+            self.patient.append(on)
+
+    held, solver = Held(), Solver()
+    stabiliser = Stabiliser([held], lambda: 1.0, MPI.COMM_SELF, stiffness=K_S, newton=solver)
+    stabiliser.switch(True)
+    assert held.stiffness == K_S and solver.patient == [True]
+    stabiliser.switch(False)
+    assert held.stiffness is None and solver.patient == [True, False]

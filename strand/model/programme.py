@@ -142,7 +142,11 @@ def run_programme(
     if stabilisation:
         model = problem.model
         stabiliser = Stabiliser(
-            [*model.contact, *model.same_layer], model.strain_energy, model.comm, stabilisation
+            [*model.contact, *model.same_layer],
+            model.strain_energy,
+            model.comm,
+            stabilisation,
+            newton=problem.solver,
         )
     for index, stage in enumerate(programme.stages):
         if index < first:

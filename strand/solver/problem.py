@@ -24,7 +24,7 @@ from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from .convergence import NewtonConvergence, NewtonOptions, NewtonResult
+from .convergence import LAST_RESORT_ITERATIONS, NewtonConvergence, NewtonOptions, NewtonResult
 from .history import HistoryState
 from .interrupt import Interrupt
 from .terms import PairAssembler, PairTerms, create_extended_matrix
@@ -264,6 +264,15 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
             self._snes.setMaxLinearSolveFailures(linear_failures)
             if lbfgs:
                 self._snes.setFromOptions()  # back to the options' L-BFGS
+
+    def last_resort(self, on: bool) -> None:
+        """Give the next solves a last resort's patience (on): no stall test, and up to
+        ``LAST_RESORT_ITERATIONS`` times the options' iterations; or the options' again (off).
+        For the attempts of a step whose cuts are exhausted (``Stabiliser``), which would
+        otherwise end the run."""
+        patience = LAST_RESORT_ITERATIONS * self.options.max_it if on else None
+        self._convergence.patience = patience
+        self._snes.setTolerances(max_it=patience or self.options.max_it)
 
     def _solve_once(self) -> NewtonResult:
         # the stall test is Newton's: L-BFGS's residual falls slowly and unevenly

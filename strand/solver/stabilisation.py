@@ -27,6 +27,12 @@ from mpi4py import MPI
 __all__ = ["Stabilised", "Stabiliser"]
 
 
+class Patient(Protocol):
+    """A solver that can be patient for a last resort (``strand.solver.NonlinearProblem``)."""
+
+    def last_resort(self, on: bool) -> None: ...
+
+
 class Stabilised(Protocol):
     """A contact group that a ``Stabiliser`` can hold (``strand.contact.PairGroup``)."""
 
@@ -45,6 +51,9 @@ class Stabiliser:
     strain_energy: Callable[[], float]
     comm: MPI.Comm
     stiffness: float = 1e4
+    #: the solver whose attempts the springs hold: patient while they are on (no stall test,
+    #: ``LAST_RESORT_ITERATIONS``), as the held attempts are the step's last
+    newton: Patient | None = None
     on: bool = False
 
     def __post_init__(self):
@@ -56,6 +65,8 @@ class Stabiliser:
         self.on = on
         for g in self.groups:
             g.stabilise(self.stiffness if on else None)
+        if self.newton is not None:
+            self.newton.last_resort(on)
 
     def energy(self) -> float:
         """The springs' energy at the last evaluation, all ranks (J)."""

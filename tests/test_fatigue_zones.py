@@ -183,6 +183,14 @@ def test_hot_spots_and_damage_are_split_by_zone(seven_wire_run):
     tension = strand_tension(sections)
     np.testing.assert_allclose(tension, 10e3, rtol=1e-2)
     assert "no tension cycle" in r.text
+    check, worst = r.tension_check, int(np.nanargmax(wires.whole.damage))
+    assert check.wire == worst
+    assert check.wire_in_clamp == (wires.clamp_zone.damage[worst] >= wires.free_span.damage[worst])
+    assert check.free_wire == int(np.nanargmax(wires.free_span.damage))
+    assert check.free_damage == wires.free_span.damage[check.free_wire] <= check.wire_damage
+    where = "clamp zone" if check.wire_in_clamp else "free span"
+    assert f"per cycle (wire {worst}, {where})" in r.text
+    assert ("; in the free span" in r.text) == check.wire_in_clamp
     assert "Poffenberger–Swart skipped" in r.text and r.poffenberger_swart.holds is False
     default = replace(FatigueSettings(), end_zone=0.0).end_zone_length(cable)
     assert default == pytest.approx(cable.layers[-1].pitch / 2)  # how far the ends' lock reaches
@@ -206,6 +214,8 @@ def test_a_span_without_a_free_span_says_so_in_one_line(seven_wire_run):
         "0.05 m, leaves one"
     ]
     assert f"{2 * half:.4g}" == "0.1977" and _intervals(r.text) == []
+    assert r.tension_check.free_wire is None and r.tension_check.wire_in_clamp
+    assert f"(wire {r.tension_check.wire}, clamp zone: no free span)" in r.text
     assert r.elements.clamp.all() and f"clamp zone (within {half:.4g} m of an end):" in r.text
 
 

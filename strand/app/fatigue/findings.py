@@ -172,6 +172,10 @@ class TensionCheck:
         api: API RP 2SK's damage (None: no breaking strength given).
         wire: the wire of largest wire-level damage (None: no wire assessed).
         wire_damage: its damage (NaN: none assessed).
+        wire_in_clamp: whether that damage lies in a clamp zone.
+        free_wire: the wire of largest damage in the free span (None: no free span, or no
+            wire assessed there).
+        free_damage: its damage there (NaN: none).
     """
 
     mean: float
@@ -182,6 +186,9 @@ class TensionCheck:
     api: float | None
     wire: int | None
     wire_damage: float
+    wire_in_clamp: bool = False
+    free_wire: int | None = None
+    free_damage: float = float("nan")
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -65,7 +65,9 @@ def tension_check(
     largest = float(cycles.range.max()) if len(cycles) else 0.0
     mean = 0.5 * float(tension.max() + tension.min())
     damage = wires.whole.damage
-    worst = int(np.nanargmax(damage)) if not np.all(np.isnan(damage)) else None
+    worst = _worst(damage)
+    free = _worst(wires.free_span.damage)
+    clamp = wires.clamp_zone.damage
     return TensionCheck(
         mean=mean,
         range=largest,
@@ -75,4 +77,12 @@ def tension_check(
         api=None if api is None else factor * api,
         wire=worst,
         wire_damage=float(damage[worst]) if worst is not None else np.nan,
+        wire_in_clamp=worst is not None and bool(clamp[worst] >= damage[worst]),
+        free_wire=free,
+        free_damage=float(wires.free_span.damage[free]) if free is not None else np.nan,
     )
+
+
+def _worst(damage: np.ndarray) -> int | None:
+    """The wire of largest damage (None: none assessed)."""
+    return None if np.all(np.isnan(damage)) else int(np.nanargmax(damage))

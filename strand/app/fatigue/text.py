@@ -152,11 +152,14 @@ def _zone_text(report: FatigueReport, clamp: bool) -> list[str]:
 
 def _tension_lines(check: TensionCheck) -> list[str]:
     """The strand-level T–N check beside the wire-level model, on the same history."""
-    wire = (
-        "no wire assessed"
-        if check.wire is None
-        else f"largest damage {check.wire_damage:.3g} per cycle (wire {check.wire})"
-    )
+    wire = "no wire assessed"
+    if check.wire is not None:
+        where = "clamp zone" if check.wire_in_clamp else "free span"
+        if check.wire_in_clamp and check.free_wire is None:
+            where += ": no free span"
+        wire = f"largest damage {check.wire_damage:.3g} per cycle (wire {check.wire}, {where})"
+        if check.wire_in_clamp and check.free_wire is not None:
+            wire += f"; in the free span {check.free_damage:.3g} per cycle (wire {check.free_wire})"
     if not check.cycle:
         return [
             f"tension-only practice (T–N): no tension cycle: the strand's tension at midspan "

@@ -14,8 +14,7 @@ from ..cable.description import CableError
 from ..contact.element import check_slip, resolve_normal
 from ..contact.errors import ContactError
 from .compliances import PENALTY_SETTINGS, compliance_named, compliances
-from .layer_states import FIRST_LAYER, SAME_LAYER
-from .same_layer import SAME_LAYER_STENCILS
+from .layer_states import FIRST_LAYER, SAME_LAYER, SAME_LAYER_STENCILS
 
 __all__ = ["ContactSettings"]
 

@@ -162,24 +162,20 @@ def test_the_built_in_name_needs_its_own_loads():
     assert case_from_dict({"cable": "cardinal"}).unset_loads == ()
 
 
-def test_every_number_setting_names_its_unit():
-    """Every number of every section and set-up kind has its unit in its class's ``UNITS``
-    ("" for a ratio or a count), so that a refused value's line gives it: a new setting without
-    one fails here."""
-    from dataclasses import fields
+def test_every_setting_is_declared_with_a_valid_default():
+    """Every setting of every section and set-up kind is declared (``setting``: unit, sign,
+    choices, meaning), its default passes its own declaration (a choice among its choices, a
+    number of its sign), and a refused value's line gives its unit: a new setting without a
+    declaration fails here."""
+    from strand.app.settings import SECTIONS
+    from strand.app.settings_schema import entries
+    from strand.beam.setting import read_value
 
-    from strand.app import kinds
-    from strand.app.settings import KIND_SECTIONS, SECTIONS
-
-    classes = [*SECTIONS.values()]
-    for kind in kinds.registered():
-        classes += [getattr(kind, attr) for attr in KIND_SECTIONS.values()]
-    for cls in classes:
-        defaults = cls()
-        for f in fields(defaults):
-            value = getattr(defaults, f.name)
-            if isinstance(value, int | float) and not isinstance(value, bool):
-                assert f.name in cls.UNITS, f"{cls.__name__}.{f.name}: no unit in UNITS"
+    for section in SECTIONS:
+        for e in entries(section):
+            assert e.meta.doc, (section, e.name)
+            value = list(e.default) if isinstance(e.default, tuple) else e.default
+            assert read_value(e.name, value, e.default, e.meta) == e.default, (section, e.name)
     line = "[fatigue] clamp_distance = -0.089 m: expected a positive number"
     with pytest.raises(Exception, match=re.escape(line)):
         case_from_dict({"fatigue": {"clamp_distance": -0.089}}, source="c")

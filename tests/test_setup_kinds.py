@@ -18,6 +18,7 @@ from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
 from strand.app.kinds import NoSettings, SetupKind
 from strand.beam.records import quantity
+from strand.beam.setting import setting
 from strand.model.cell_results import section_resultants
 from strand.setups.saddle import SaddleTest
 from strand_cases import SEVEN_WIRE
@@ -73,15 +74,19 @@ class PullTest(SaddleTest):
         return PullSection(self.loads["pull"], float(force[2]))
 
 
+#: the toy's own setting, declared in this one place
+PULL_MEANING = "Extra end force cycled on top of the tension, the toy's own setting."
+
+
 @dataclass(frozen=True)
 class PullLoad:
-    pull: float = 2e3  # N
+    pull: float = setting(2e3, PULL_MEANING, unit="N", sign="any")
 
 
 @dataclass(frozen=True)
 class PullSteps:
-    pull: float = 1e3  # N
-    pull_max: float = 2e3  # N
+    pull: float = setting(1e3, "First pull increment of each leg.", unit="N")
+    pull_max: float = setting(2e3, "Largest pull increment.", unit="N")
 
 
 class Pull(SetupKind):
@@ -92,7 +97,6 @@ class Pull(SetupKind):
     measure = "end_displacement"
     load_settings = PullLoad
     step_settings = PullSteps
-    signed = frozenset({"pull"})
 
     def setup(self, case):
         return partial(PullTest, direction=case.load.direction)
@@ -200,12 +204,17 @@ def test_a_kinds_own_settings_are_checked_and_refused_in_other_cases(pull):
 
 @dataclass(frozen=True)
 class ClashLoad:
-    lateral: float = 1.0  # N: the saddle test's setting
+    lateral: float = setting(1.0, "The saddle test's setting.", unit="N")
 
 
 @dataclass(frozen=True)
 class ClashSteps:
-    tension: float = 1.0  # N: a setting every kind shares
+    tension: float = setting(1.0, "A setting every kind shares.", unit="N")
+
+
+@dataclass(frozen=True)
+class UndeclaredLoad:
+    twist: float = 1.0  # rad: a setting without its declaration
 
 
 def test_a_kind_may_not_take_another_kinds_settings():
@@ -218,6 +227,9 @@ def test_a_kind_may_not_take_another_kinds_settings():
         kinds.register(Clash())
     Clash.load_settings, Clash.step_settings = NoSettings, ClashSteps
     with pytest.raises(ValueError, match=r"settings \['tension'\] belong to every kind"):
+        kinds.register(Clash())
+    Clash.load_settings, Clash.step_settings = UndeclaredLoad, NoSettings
+    with pytest.raises(ValueError, match=r"settings \['twist'\] are not declared"):
         kinds.register(Clash())
     assert "clash" not in [k.name for k in kinds.registered()]
 

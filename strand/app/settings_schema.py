@@ -1,0 +1,83 @@
+"""Every setting of a case file, from its one declaration (``strand.beam.setting.setting`` on
+the fields of the settings classes, ``strand.app.settings``, and of the registered set-up
+kinds' own, ``strand.app.kinds``): the entries of each section (``entries``), which the case
+reader (``strand.app.case``), ``strand run --help`` and the settings reference
+(``strand.app.settings_reference``) read.
+
+The set-up kinds join in here, when a case is read or a text is made: the settings classes
+import nothing of them.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, fields, replace
+from typing import Any
+
+from ..beam.setting import Declared, declared, default_of
+from .settings import KIND_SECTIONS, SECTIONS
+
+__all__ = ["Entry", "entries", "kind_settings", "toml_default", "CABLE"]
+
+#: ``cable``'s meaning (it is no settings class's field)
+CABLE = (
+    "built-in (cardinal, judge120), a cable TOML file (relative to the case file), or a "
+    "[cable] table with a [cable.core] table and one [[cable.layer]] table per layer"
+)
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One setting of a section: its key, default, declaration and the set-up kind it belongs
+    to ("" for the settings every kind shares)."""
+
+    name: str
+    default: Any
+    meta: Declared
+    kind: str = ""
+
+
+def _registered() -> tuple:
+    """The registered set-up kinds (the built-in ones registered by importing them)."""
+    from . import kinds
+
+    return kinds.registered()
+
+
+def kind_settings(section: str) -> dict[str, Any]:
+    """Every registered kind's own settings of ``section`` at their defaults, by kind name
+    (``WithKinds.by_kind``); {} for a section without kinds' settings."""
+    if section not in KIND_SECTIONS:
+        return {}
+    return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in _registered()}
+
+
+def entries(section: str) -> list[Entry]:
+    """The settings of ``section``: those every set-up kind shares, then each registered
+    kind's own; ``[load] kind`` chooses among the registered kinds."""
+    classes = [(SECTIONS[section], "")]
+    if section in KIND_SECTIONS:
+        classes += [(getattr(k, KIND_SECTIONS[section]), k.name) for k in _registered()]
+    out = []
+    for cls, kind in classes:
+        for f in fields(cls):
+            meta = declared(f)
+            if meta is None:
+                continue  # by_kind
+            if (section, f.name) == ("load", "kind"):
+                meta = replace(meta, choices=tuple(k.name for k in _registered()))
+            out.append(Entry(f.name, default_of(f), meta, kind))
+    return out
+
+
+def toml_default(value: Any) -> str:
+    """A default as a case file writes it: floats in at most 6 significant digits."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, tuple):
+        return "[" + ", ".join(repr(v) for v in value) + "]"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, float):
+        return re.sub(r"e([+-])0*(\d)", lambda m: "e" + m[1].strip("+") + m[2], f"{value:.6g}")
+    return repr(value)

@@ -1,8 +1,9 @@
 """Every setting of a case file, from its one declaration (``strand.beam.setting.setting`` on
 the fields of the settings classes, ``strand.app.settings``, and of the registered set-up
-kinds' own, ``strand.app.kinds``): the entries of each section (``entries``), which the case
-reader (``strand.app.case``), ``strand run --help`` and the settings reference
-(``strand.app.settings_reference``) read.
+kinds' own, ``strand.app.kinds``): the entries of each section (``entries``) and the commented
+case template (``template``, ``strand run --template``). The case reader (``strand.app.case``),
+``strand run --help`` and the settings reference (``strand.app.settings_reference``) read the
+same entries.
 
 The set-up kinds join in here, when a case is read or a text is made: the settings classes
 import nothing of them.
@@ -11,13 +12,14 @@ import nothing of them.
 from __future__ import annotations
 
 import re
+import textwrap
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
 from ..beam.setting import Declared, declared, default_of
 from .settings import KIND_SECTIONS, SECTIONS
 
-__all__ = ["Entry", "entries", "kind_settings", "toml_default", "CABLE"]
+__all__ = ["Entry", "entries", "kind_settings", "toml_default", "template", "CABLE"]
 
 #: ``cable``'s meaning (it is no settings class's field)
 CABLE = (
@@ -81,3 +83,39 @@ def toml_default(value: Any) -> str:
     if isinstance(value, float):
         return re.sub(r"e([+-])0*(\d)", lambda m: "e" + m[1].strip("+") + m[2], f"{value:.6g}")
     return repr(value)
+
+
+def _comment(entry: Entry) -> str:
+    """A setting's comment in the template: its unit, kind and summary."""
+    head = ", ".join(
+        t for t in (entry.meta.unit, f'kind = "{entry.kind}"' if entry.kind else "") if t
+    )
+    summary = entry.meta.summary.replace("``", "")
+    return f"{head}: {summary}" if head else summary
+
+
+def template(width: int = 100) -> str:
+    """A commented case file with every setting at its default (``strand run --template``):
+    valid TOML, read as the default case."""
+    lines = [
+        "# A strand case file: every setting at its default, with its unit and meaning",
+        "# (strand run --template). Keep only what you change; the settings reference of the",
+        "# docs gives each setting in full. Units: SI.",
+        "",
+        *_commented('cable = "cardinal"', CABLE, width),
+    ]
+    for section in SECTIONS:
+        lines += ["", f"[{section}]"]
+        for e in entries(section):
+            lines += _commented(f"{e.name} = {toml_default(e.default)}", _comment(e), width)
+    return "\n".join(lines) + "\n"
+
+
+def _commented(key: str, text: str, width: int, column: int = 26) -> list[str]:
+    """``key``, then ``text`` as a comment wrapped from ``column`` on."""
+    pad = " " * column
+    wrapped = textwrap.wrap(text, width - column - 2) or [""]
+    comments = [f"# {line}" for line in wrapped]
+    if len(key) < column - 1:
+        return [key.ljust(column) + comments[0], *(pad + c for c in comments[1:])]
+    return [key, *(pad + c for c in comments)]

@@ -1,9 +1,10 @@
 """Every setting of a case file, from its one declaration (``strand.beam.setting.setting`` on
 the fields of the settings classes, ``strand.app.settings``, and of the registered set-up
-kinds' own, ``strand.app.kinds``): the entries of each section (``entries``) and the commented
-case template (``template``, ``strand run --template``). The case reader (``strand.app.case``),
-``strand run --help`` and the settings reference (``strand.app.settings_reference``) read the
-same entries.
+kinds' own, ``strand.app.kinds``): the entries of each section (``entries``), the commented case
+template (``template``, ``strand run --template``) and the JSON Schema of a case file
+(``json_schema``; shipped as ``case.schema.json`` for editors that check TOML against a schema,
+taplo and Even Better TOML). The case reader (``strand.app.case``), ``strand run --help`` and the
+settings reference (``strand.app.settings_reference``) read the same entries.
 
 The set-up kinds join in here, when a case is read or a text is made: the settings classes
 import nothing of them.
@@ -11,15 +12,32 @@ import nothing of them.
 
 from __future__ import annotations
 
+import json
 import re
 import textwrap
 from dataclasses import dataclass, fields, replace
+from pathlib import Path
 from typing import Any
 
 from ..beam.setting import Declared, declared, default_of
+from ..cable.description import CORE_KEYS, LAYER_KEYS
 from .settings import KIND_SECTIONS, SECTIONS
 
-__all__ = ["Entry", "entries", "kind_settings", "toml_default", "template", "CABLE"]
+__all__ = [
+    "Entry",
+    "entries",
+    "kind_settings",
+    "toml_default",
+    "template",
+    "json_schema",
+    "schema_text",
+    "write_schema",
+    "SCHEMA_FILE",
+    "CABLE",
+]
+
+#: the JSON Schema of a case file, as shipped with the package (``json_schema``)
+SCHEMA_FILE = Path(__file__).with_name("case.schema.json")
 
 #: ``cable``'s meaning (it is no settings class's field)
 CABLE = (
@@ -119,3 +137,93 @@ def _commented(key: str, text: str, width: int, column: int = 26) -> list[str]:
     if len(key) < column - 1:
         return [key.ljust(column) + comments[0], *(pad + c for c in comments[1:])]
     return [key, *(pad + c for c in comments)]
+
+
+# --- the JSON Schema ----------------------------------------------------------------------
+
+
+def _value_schema(entry: Entry) -> dict[str, Any]:
+    """The JSON Schema of one setting's value, with its meaning and default."""
+    meta, default = entry.meta, entry.default
+    if meta.schema is not None:
+        out = dict(meta.schema)
+    elif isinstance(default, bool):
+        out = {"type": "boolean"}
+    elif isinstance(default, int | float):
+        whole = isinstance(default, int) or meta.sign == "count"
+        out = {"type": "integer" if whole else "number"}
+        if meta.sign == "positive":
+            out["exclusiveMinimum"] = 0
+        elif meta.sign in ("zero_is_off", "count"):
+            out["minimum"] = 0
+    elif isinstance(default, str):
+        out = {"type": "string"}
+        if meta.allowed():
+            out["enum"] = list(meta.allowed())
+    elif isinstance(default, tuple):
+        out = {"type": "array", "items": {"type": "number"}}
+    else:
+        raise TypeError(f"{entry.name}: no JSON Schema for a default {default!r}")
+    unit = f" ({meta.unit})" if meta.unit else ""
+    kind = f'kind = "{entry.kind}": ' if entry.kind else ""
+    out["description"] = f"{kind}{meta.doc}{unit}".replace("``", "`")
+    out["default"] = json.loads(json.dumps(default))
+    return out
+
+
+def _cable_schema() -> dict[str, Any]:
+    def table(keys) -> dict[str, Any]:
+        return {
+            "type": "object",
+            "properties": {k: {} for k in sorted(keys)},
+            "additionalProperties": False,
+        }
+
+    return {
+        "description": CABLE,
+        "anyOf": [
+            {"type": "string"},
+            {
+                "type": "object",
+                "properties": {
+                    "name": {"type": "string"},
+                    "core": table(CORE_KEYS),
+                    "layer": {"type": "array", "items": table(LAYER_KEYS)},
+                },
+                "required": ["core", "layer"],
+                "additionalProperties": False,
+            },
+        ],
+    }
+
+
+def json_schema() -> dict[str, Any]:
+    """The JSON Schema (draft 7) of a case file: every section and setting, each with its type,
+    sign, choices, meaning and default; an unknown key fails it."""
+    properties: dict[str, Any] = {"cable": _cable_schema()}
+    for section, cls in SECTIONS.items():
+        properties[section] = {
+            "type": "object",
+            "description": (cls.__doc__ or "").split("\n\n")[0].strip(),
+            "properties": {e.name: _value_schema(e) for e in entries(section)},
+            "additionalProperties": False,
+        }
+    return {
+        "$schema": "http://json-schema.org/draft-07/schema#",
+        "title": "strand case file",
+        "description": "A case of strand (strand run): every setting has a default; a case "
+        "lists what it changes. Units: SI. Generated by strand.app.settings_schema.",
+        "type": "object",
+        "properties": properties,
+        "additionalProperties": False,
+    }
+
+
+def schema_text() -> str:
+    """``json_schema`` as the shipped file ``case.schema.json`` holds it."""
+    return json.dumps(json_schema(), indent=2, ensure_ascii=False) + "\n"
+
+
+def write_schema() -> None:
+    """Write ``SCHEMA_FILE`` from the declarations (after a setting is added or changed)."""
+    SCHEMA_FILE.write_text(schema_text())

@@ -20,6 +20,8 @@ from strand.app.cli import main
 from strand.cable.description import judge120
 from strand_cases import SEVEN_WIRE, one_line_error
 
+ROOT = Path(__file__).resolve().parents[1]
+
 QUICK = SEVEN_WIRE.replace("plots = false", "plots = false\nfields = false")
 #: the 1+6 of SEVEN_WIRE with a yield stress on its core below the core's stress at 10 kN
 #: (189 MPa by the model, 198 MPa by the fibre model)
@@ -162,24 +164,86 @@ def test_the_built_in_name_needs_its_own_loads():
     assert case_from_dict({"cable": "cardinal"}).unset_loads == ()
 
 
-def test_every_number_setting_names_its_unit():
-    """Every number of every section and set-up kind has its unit in its class's ``UNITS``
-    ("" for a ratio or a count), so that a refused value's line gives it: a new setting without
-    one fails here."""
-    from dataclasses import fields
+def test_every_setting_is_declared_with_a_valid_default():
+    """Every setting of every section and set-up kind is declared (``setting``: unit, sign,
+    choices, meaning), its default passes its own declaration (a choice among its choices, a
+    number of its sign), and a refused value's line gives its unit: a new setting without a
+    declaration fails here."""
+    from strand.app.settings import SECTIONS
+    from strand.app.settings_schema import entries
+    from strand.beam.setting import read_value
 
-    from strand.app import kinds
-    from strand.app.settings import KIND_SECTIONS, SECTIONS
-
-    classes = [*SECTIONS.values()]
-    for kind in kinds.registered():
-        classes += [getattr(kind, attr) for attr in KIND_SECTIONS.values()]
-    for cls in classes:
-        defaults = cls()
-        for f in fields(defaults):
-            value = getattr(defaults, f.name)
-            if isinstance(value, int | float) and not isinstance(value, bool):
-                assert f.name in cls.UNITS, f"{cls.__name__}.{f.name}: no unit in UNITS"
+    for section in SECTIONS:
+        for e in entries(section):
+            assert e.meta.doc, (section, e.name)
+            value = list(e.default) if isinstance(e.default, tuple) else e.default
+            assert read_value(e.name, value, e.default, e.meta) == e.default, (section, e.name)
     line = "[fatigue] clamp_distance = -0.089 m: expected a positive number"
     with pytest.raises(Exception, match=re.escape(line)):
         case_from_dict({"fatigue": {"clamp_distance": -0.089}}, source="c")
+
+
+@pytest.fixture(scope="module")
+def validator():
+    """The JSON Schema of a case file as shipped with strand."""
+    import json
+
+    import jsonschema
+
+    from strand.app.settings_schema import SCHEMA_FILE
+
+    schema = json.loads(SCHEMA_FILE.read_text())
+    jsonschema.Draft7Validator.check_schema(schema)
+    return jsonschema.Draft7Validator(schema)
+
+
+def test_the_shipped_json_schema_is_the_generated_one():
+    """``case.schema.json`` is what the declarations give (regenerate it with
+    ``python -c "from strand.app.settings_schema import write_schema; write_schema()"``)."""
+    from strand.app.settings_schema import SCHEMA_FILE, schema_text
+
+    assert SCHEMA_FILE.read_text() == schema_text()
+
+
+@pytest.mark.parametrize("path", sorted(ROOT.glob("cases/*.toml")), ids=lambda p: p.name)
+def test_every_shipped_case_validates_against_the_schema(validator, path):
+    data = tomllib.loads(path.read_text())
+    assert [e.message for e in validator.iter_errors(data)] == []
+
+
+def test_the_template_is_the_default_case_and_validates(validator):
+    """``strand run --template`` is valid TOML that passes the schema and reads as the default
+    case; a typo in a key, a choice or a sign fails the schema."""
+    from strand.app.settings_schema import template
+
+    data = tomllib.loads(template())
+    assert [e.message for e in validator.iter_errors(data)] == []
+    assert same_case(case_from_dict(data), case_from_dict({}))
+    for bad in (
+        {"mesh": {"lenght": 1.0}},
+        {"meshes": {}},
+        {"contact": {"model": "huge"}},
+        {"steps": {"balance": -1.0}},
+        {"steps": {"cuts": 2.5}},
+        {"load": {"direction": [1.0, 0.0]}},
+        {"fatigue": {"spectrum": {"class": []}}},
+        {"cable": {"core": {"diameter": 1e-3}, "layer": [{"wire": 6}]}},
+    ):
+        assert not validator.is_valid(bad), bad
+
+
+def test_a_default_case_imports_neither_the_kinds_nor_dolfinx():
+    """The settings import nothing of the set-up kinds (they join in when a case is read), and
+    their declarations nothing of dolfinx: a ``Case`` made in code is light."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from strand.app.settings import Case\n"
+        "from strand.cable.description import cardinal\n"
+        "Case(cardinal())\n"
+        "print(sorted(m for m in sys.modules if m == 'dolfinx' or m.startswith('strand.app.k')))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]"

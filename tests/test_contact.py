@@ -538,19 +538,21 @@ def test_contact_settings_default_normal_follows_friction():
 
 
 def test_contact_settings_reject_bad_input():
-    with pytest.raises(CableError, match="normal 'radial' is unknown"):
+    with pytest.raises(CableError, match="normal = 'radial' is unknown"):
         ContactSettings(normal="radial")
     with pytest.raises(CableError, match="k_point = -1"):
         ContactSettings(k_point=-1)
-    with pytest.raises(CableError, match="model 'huge' is unknown"):
+    with pytest.raises(CableError, match="model = 'huge' is unknown"):
         ContactSettings(model="huge")
     with pytest.raises(CableError, match="reach = 0"):
         ContactSettings(model="large", reach=0)
     with pytest.raises(CableError, match="g_lim apply to compliance"):
         ContactSettings(compliance="hertz", g_lim=1e-6)
-    with pytest.raises(CableError, match="compliance 'stiff' is unknown"):
+    with pytest.raises(CableError, match="compliance = 'stiff' is unknown"):
         ContactSettings(compliance="stiff")
-    with pytest.raises(CableError, match="slip 'centre' is unknown; choose surface or centreline"):
+    with pytest.raises(
+        CableError, match="slip = 'centre' is unknown; choose surface or centreline"
+    ):
         ContactSettings(slip="centre")
     from strand.app.case import CaseError, case_from_dict  # unknown keys: the case file's [contact]
 

@@ -59,7 +59,7 @@ def test_a_case_selects_a_registered_compliance_and_refuses_an_unknown_one(mine)
     assert case_from_dict({"contact": {"compliance": "mine"}}).contact.compliance == "mine"
     with pytest.raises(
         CaseError,
-        match="compliance 'stiff' is unknown; choose penalty, hertz, hertz_microslip or mine",
+        match="compliance = 'stiff' is unknown; choose penalty, hertz, hertz_microslip or mine",
     ) as e:
         case_from_dict({"contact": {"compliance": "stiff"}})
     assert "\n" not in str(e.value)

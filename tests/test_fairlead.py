@@ -247,7 +247,10 @@ def test_a_cable_of_ones_own_is_asked_for_the_swing_it_cycles():
         (["load.bend_radius=-5.0"], "[load] bend_radius = -5 m: expected a positive value"),
         (["load.curvature_swing=-0.1"], "[load] curvature_swing = -0.1 1/m: expected a positive"),
         (["load.bend_angle=20.0"], "bend_angle = 20 deg and bend_length = 0 m go together"),
-        (['load.cycled="angle"'], "[load] cycled = 'angle': expected \"tension\""),
+        (
+            ['load.cycled="angle"'],
+            "[load] cycled = 'angle' is unknown; choose tension or curvature",
+        ),
         (
             ["load.bend_radius=5.0", 'load.cycled="curvature"'],
             '[load] cycled = "curvature" needs [load] curvature_swing (1/m)',

@@ -216,7 +216,7 @@ def test_a_mean_curve_and_its_characteristic_one_are_two_standard_deviations_apa
                 "user_sn_log_a": 12.0,
                 "user_sn_given": "median",
             },
-            r"user_sn_given = 'median': expected \"characteristic\" or \"mean\"",
+            r"user_sn_given = 'median' is unknown; choose characteristic or mean",
         ),
         ({"user_sn_sd": -0.2}, r"user_sn_sd = -0\.2: expected a positive number, or 0 for off"),
     ],

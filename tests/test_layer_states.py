@@ -93,7 +93,7 @@ def test_a_king_wire_opens_the_first_layer_and_leaves_no_ring():
     with pytest.raises(CaseError, match=r'first_layer = "ring".*do not touch one another'):
         case_from_dict({"cable": king, "contact": {"first_layer": "ring"}})
     assert first_layer_lift(cable, "on_core") == 0.0
-    with pytest.raises(CableError, match="first_layer 'vault' is unknown"):
+    with pytest.raises(CableError, match="first_layer = 'vault' is unknown"):
         ContactSettings(first_layer="vault")
     with pytest.raises(CableError, match="gap_seed"):
         ContactSettings(gap_seed=-1)

@@ -37,7 +37,7 @@ def test_a_case_file_writes_to_results_named_after_it(tmp_path):
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("[contact]\nnormal = 'radial'\n", "normal 'radial' is unknown"),
+        ("[contact]\nnormal = 'radial'\n", "normal = 'radial' is unknown"),
         ("[contact]\nkn = 1e7\n", r"unknown setting\(s\) in \[contact\]: \['kn'\]"),
         ("[load]\ntension = 'big'\n", r"\[load\] tension = 'big': expected a number"),
         ("[load]\ncycle = []\n", "expected at least one lateral target"),
@@ -51,7 +51,10 @@ def test_a_case_file_writes_to_results_named_after_it(tmp_path):
             r"balance = -0.0001: expected a positive number, or 0 for off",
         ),
         ("[steps]\nstall = 1\n", r"\[steps\] stall = 1: expected true or false"),
-        ("[steps]\nline_search = 'nl'\n", r"\[steps\] line_search = 'nl': expected one of"),
+        (
+            "[steps]\nline_search = 'nl'\n",
+            r"\[steps\] line_search = 'nl' is unknown; choose cp, basic, bt or l2",
+        ),
         ("[output]\nplots = 1\n", "expected true or false"),
         ("[solver]\natol = 1\n", r"unknown setting\(s\) \['solver'\]"),
     ],

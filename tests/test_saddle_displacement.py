@@ -334,7 +334,12 @@ def test_the_beam_compliance_is_the_tensioned_beams():
             "clamp_distance = 0.06 m",
         ),
         ({"deflection": 1e-4}, {}, {}, "[load] deflection = 0.0001 m is a displacement amplitude"),
-        ({"control": "stroke"}, {}, {}, "[load] control = 'stroke': expected \"force\""),
+        (
+            {"control": "stroke"},
+            {},
+            {},
+            "[load] control = 'stroke' is unknown; choose force or displacement",
+        ),
         (
             {"control": "displacement", "yb": -1e-4},
             {},

@@ -78,7 +78,7 @@ def test_packed_layers_are_the_default():
 
 
 def test_settings_are_checked():
-    with pytest.raises(CableError, match="same_layer 'tight' is unknown"):
+    with pytest.raises(CableError, match="same_layer = 'tight' is unknown"):
         ContactSettings(same_layer="tight")
 
 

@@ -18,6 +18,7 @@ from strand.app.case import CaseError, case_from_dict, load_case
 from strand.app.cli import main
 from strand.app.kinds import NoSettings, SetupKind
 from strand.beam.records import quantity
+from strand.beam.setting import setting
 from strand.model.cell_results import section_resultants
 from strand.setups.saddle import SaddleTest
 from strand_cases import SEVEN_WIRE
@@ -73,15 +74,19 @@ class PullTest(SaddleTest):
         return PullSection(self.loads["pull"], float(force[2]))
 
 
+#: the toy's own setting, declared in this one place
+PULL_MEANING = "Extra end force cycled on top of the tension, the toy's own setting."
+
+
 @dataclass(frozen=True)
 class PullLoad:
-    pull: float = 2e3  # N
+    pull: float = setting(2e3, PULL_MEANING, unit="N", sign="any")
 
 
 @dataclass(frozen=True)
 class PullSteps:
-    pull: float = 1e3  # N
-    pull_max: float = 2e3  # N
+    pull: float = setting(1e3, "First pull increment of each leg.", unit="N")
+    pull_max: float = setting(2e3, "Largest pull increment.", unit="N")
 
 
 class Pull(SetupKind):
@@ -92,7 +97,6 @@ class Pull(SetupKind):
     measure = "end_displacement"
     load_settings = PullLoad
     step_settings = PullSteps
-    signed = frozenset({"pull"})
 
     def setup(self, case):
         return partial(PullTest, direction=case.load.direction)
@@ -200,12 +204,17 @@ def test_a_kinds_own_settings_are_checked_and_refused_in_other_cases(pull):
 
 @dataclass(frozen=True)
 class ClashLoad:
-    lateral: float = 1.0  # N: the saddle test's setting
+    lateral: float = setting(1.0, "The saddle test's setting.", unit="N")
 
 
 @dataclass(frozen=True)
 class ClashSteps:
-    tension: float = 1.0  # N: a setting every kind shares
+    tension: float = setting(1.0, "A setting every kind shares.", unit="N")
+
+
+@dataclass(frozen=True)
+class UndeclaredLoad:
+    twist: float = 1.0  # rad: a setting without its declaration
 
 
 def test_a_kind_may_not_take_another_kinds_settings():
@@ -218,6 +227,9 @@ def test_a_kind_may_not_take_another_kinds_settings():
         kinds.register(Clash())
     Clash.load_settings, Clash.step_settings = NoSettings, ClashSteps
     with pytest.raises(ValueError, match=r"settings \['tension'\] belong to every kind"):
+        kinds.register(Clash())
+    Clash.load_settings, Clash.step_settings = UndeclaredLoad, NoSettings
+    with pytest.raises(ValueError, match=r"settings \['twist'\] are not declared"):
         kinds.register(Clash())
     assert "clash" not in [k.name for k in kinds.registered()]
 
@@ -243,3 +255,51 @@ def test_figure_titles_name_the_kinds_own_load():
     assert kinds.lookup("bending").load_text(0.0125) == "κ = 0.0125 1/m"
     assert kinds.lookup("tension_cycle").load_text(-2000.0) == "ΔT = -2.00 kN"
     assert SaddleDisplacement("deflection").load_text(1.5e-3) == "deflection = 1.50 mm"
+
+
+def test_a_kinds_setting_declared_once_is_everywhere(pull, capsys):
+    """The toy's ``[load] pull``, declared in one place (``PullLoad``), is read and checked from
+    a case file (its unit in the refusal), listed by ``strand run --help``, the settings
+    reference and the case template, written into ``case.toml`` and described by the JSON
+    Schema, which checks its sign."""
+    import json
+    import tomllib
+
+    import jsonschema
+
+    from strand.app.case_toml import case_toml
+    from strand.app.settings_reference import sections
+    from strand.app.settings_schema import json_schema, template
+
+    case = case_from_dict({"load": {"kind": "pull", "pull": 500.0}})
+    assert case.load.pull == 500.0
+    with pytest.raises(CaseError, match=r"\[load\] pull = 'much': expected a number"):
+        case_from_dict({"load": {"pull": "much"}})
+    with pytest.raises(CaseError, match=r"\[steps\] pull = -1 N: expected a positive number"):
+        case_from_dict({"steps": {"pull": -1}})
+
+    with pytest.raises(SystemExit):
+        main(["run", "--help"])
+    help_text = capsys.readouterr().out
+    line = '  pull = 2000                 (kind = "pull") (N) Extra end force cycled'
+    assert line in help_text
+
+    own = {s.name: s for s in sections()["load"][1] if s.kind == "pull"}
+    assert own["pull"].meaning == PULL_MEANING and own["pull"].unit == "N"
+
+    text = template()
+    assert 'pull = 2000               # N, kind = "pull": Extra end force cycled' in text
+    default = case_from_dict(tomllib.loads(text))
+    assert default.load.pull == 2e3 and default.steps.pull_max == 2e3
+
+    assert "pull = 500.0" in case_toml(case).split("[load]")[1].split("[steps]")[0]
+
+    schema = json_schema()
+    pull_schema = schema["properties"]["load"]["properties"]["pull"]
+    assert PULL_MEANING in pull_schema["description"] and pull_schema["default"] == 2e3
+    steps_schema = schema["properties"]["steps"]["properties"]["pull"]
+    assert steps_schema["exclusiveMinimum"] == 0
+    validator = jsonschema.Draft7Validator(json.loads(json.dumps(schema)))
+    assert validator.is_valid({"load": {"kind": "pull", "pull": -3.0}, "steps": {"pull": 1.0}})
+    assert not validator.is_valid({"steps": {"pull": -1.0}})
+    assert not validator.is_valid({"load": {"pul": 1.0}})

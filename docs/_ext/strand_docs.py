@@ -37,12 +37,14 @@ def settings_reference() -> str:
     out = [
         "# Settings reference",
         "",
-        "Every setting of a case file, with its default and meaning, generated when the docs are",
-        "built from the settings classes (their fields, defaults, `Attributes:` docstrings and",
-        "comments), as `strand run --help` lists them. SI units. A case file lists only what it",
-        "changes; `strand run case.toml --set section.key=value` changes one from the command",
-        "line. Unknown keys and bad values stop the run before anything is computed, naming the",
-        "file and the key.",
+        "Every setting of a case file, with its default, unit and meaning, generated when the",
+        "docs are built from the one declaration of each setting (`strand.beam.setting`), as",
+        "`strand run --help` lists them and `strand run --template` writes them as a commented",
+        "case file. SI units. A case file lists only what it changes; `strand run case.toml --set",
+        "section.key=value` changes one from the command line. Unknown keys and bad values stop",
+        "the run before anything is computed, naming the file and the key. Editors that check",
+        "TOML against a JSON Schema (taplo, Even Better TOML) can use the one shipped with strand,",
+        "`strand/app/case.schema.json`: a first line `#:schema <path to it>` in a case file.",
         "",
         "## `cable`",
         "",
@@ -77,10 +79,11 @@ def settings_reference() -> str:
         out += ["", f"## `[{section}]`", ""]
         if doc:
             out += [doc, ""]
-        out += ["| setting | default | meaning |", "|---|---|---|"]
+        out += ["| setting | default | unit | meaning |", "|---|---|---|---|"]
         for s in settings:
             text = f'*`kind = "{s.kind}"` only.* {s.meaning}' if s.kind else s.meaning
-            out.append(f"| `{s.name}` | `{_cell(s.default)}` | {_cell(text)} |")
+            unit = s.unit or "–"
+            out.append(f"| `{s.name}` | `{_cell(s.default)}` | {unit} | {_cell(text)} |")
     return "\n".join(out) + "\n"
 
 

@@ -148,6 +148,11 @@ def _case_to_run(args, parser):
 def _run(args, parser) -> int:
     from .errors import CaseError
 
+    if args.template:
+        from .settings_schema import template
+
+        print(template(), end="")
+        return 0
     case = _case_to_run(args, parser)  # every setting is checked here, before computing
     if case is None:
         return 2
@@ -250,6 +255,12 @@ def main(argv: list[str] | None = None) -> int:
         "case", nargs="?", help=f"case file (TOML), or {DEFAULT_CASE!r} for the built-in case"
     )
     run.add_argument("--out", help="results folder (default: [output] folder, or results/<case>)")
+    run.add_argument(
+        "--template",
+        action="store_true",
+        help="print a case file with every setting at its default, its unit and meaning; "
+        "run nothing",
+    )
     run.add_argument(
         "--overwrite",
         action="store_true",

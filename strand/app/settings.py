@@ -2,24 +2,25 @@
 ``Case`` that holds them with the cable and its contact settings (``strand.app.case`` reads them
 from a case file).
 
-Every setting has a default. ``[load]`` and ``[steps]`` hold the settings every set-up kind shares
-and, in ``by_kind``, each registered kind's own (``strand.app.kinds``), all read flat as the case
-file writes them (``case.load.zone``). The settings read the kinds from their registry
-(``strand.app.kind_registry``) and import none: the kinds are built on the settings, and the
-built-in ones are registered by importing ``strand.app.kinds``, which reading a case does. ``strand.app.case`` checks a case file's values against
-these. Units: SI, in the comments.
+Every setting is declared once, on its field (``strand.beam.setting.setting``): default, SI unit,
+sign, choices and meaning, from which the reader, ``strand run --help``, the settings reference,
+the case template and the JSON Schema are made (``strand.app.settings_schema``). ``[load]`` and
+``[steps]`` hold the settings every set-up kind shares and, in ``by_kind``, each registered
+kind's own (``strand.app.kinds``), all read flat as the case file writes them
+(``case.load.zone``). The kinds join in when a case is read: this module imports nothing of them,
+and a ``Case`` made in code holds the common settings alone.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
-from functools import partial
-from typing import Any, ClassVar
+from types import MappingProxyType
+from typing import Any
 
+from ..beam.setting import Declared, SettingError, numbers, read_value, setting
 from ..cable.description import Cable
 from ..model.contact_settings import ContactSettings
-from .kind_registry import registered
 
 __all__ = [
     "Case",
@@ -30,34 +31,106 @@ __all__ = [
     "FatigueSettings",
     "WithKinds",
     "KIND_SECTIONS",
-    "unit_of",
 ]
+
+
+def _iterations() -> tuple[str, ...]:
+    """``[steps] iteration``'s choices (``NewtonOptions.iteration``), read when a case is."""
+    from ..solver.convergence import ITERATIONS
+
+    return ITERATIONS
+
+
+def _tension(where: str, value: Any) -> float:
+    number = read_value(where, value, 0.0, Declared("", sign="any"))
+    if not number > 0:
+        raise SettingError(
+            f"{where}: expected a positive tension; a compressed strand is outside the model "
+            "(its wires buckle and its contact pairs open)"
+        )
+    return number
+
+
+def _cycle(where: str, value: Any) -> tuple[float, ...]:
+    targets = numbers(where, value)
+    if not targets:
+        raise SettingError(f"{where}: expected at least one lateral target")
+    return targets
+
+
+def _direction(where: str, value: Any) -> tuple[float, ...]:
+    d = numbers(where, value)
+    if len(d) != 3 or d[2] != 0 or d[:2] == (0, 0):
+        raise SettingError(f"{where}: expected [x, y, 0], a direction across the strand axis")
+    return d
+
+
+def _amplitudes(where: str, value: Any) -> tuple[float, ...]:
+    sweep = numbers(where, value)
+    if not all(v > 0 for v in sweep):
+        raise SettingError(f"{where}: expected positive amplitudes (the cycle gives the signs)")
+    if len(set(sweep)) != len(sweep):
+        raise SettingError(f"{where}: an amplitude is listed twice")
+    return sweep
+
+
+def _spectrum(where: str, value: Any) -> tuple[tuple[float, float], ...]:
+    """``[fatigue] spectrum``: the list ``[[amplitude, cycles], ...]``, or the table
+    ``[fatigue.spectrum]`` with that list as ``classes`` (``strand spectrum``'s block)."""
+    from ..fatigue.spectrum import spectrum_classes
+
+    if isinstance(value, dict):
+        if set(value) != {"classes"}:
+            raise SettingError(
+                f"[fatigue.spectrum]: expected the one key classes = [[amplitude, cycles], ...]; "
+                f"got {sorted(value)}"
+            )
+        value = value["classes"]
+    try:
+        return spectrum_classes(value)
+    except ValueError as e:
+        raise SettingError(f"[fatigue] spectrum: {e}") from None
+
+
+_PAIRS = {
+    "type": "array",
+    "items": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+}
+_SPECTRUM = {
+    "anyOf": [
+        _PAIRS,
+        {
+            "type": "object",
+            "properties": {"classes": _PAIRS},
+            "required": ["classes"],
+            "additionalProperties": False,
+        },
+    ]
+}
 
 
 @dataclass(frozen=True)
 class MeshSettings:
-    length: float = 1.0  # m
-    h_max: float = 4e-3  # m, largest element: thinnest wire diameter / 10 to shortest lay / 8
+    """The strand's mesh."""
 
-    #: the SI unit of every number ("" for a ratio or a count): error messages give it
-    UNITS: ClassVar[dict[str, str]] = {"length": "m", "h_max": "m"}
+    length: float = setting(1.0, "Free length between the end sections.", unit="m")
+    h_max: float = setting(
+        4e-3,
+        "Largest element (arc length), from the thinnest wire's diameter / 10 to the shortest "
+        "lay length / 8.",
+        unit="m",
+    )
 
 
 #: the sections whose keys include the set-up kinds' own, and each kind's attribute for them
 KIND_SECTIONS = {"load": "load_settings", "steps": "step_settings"}
 
 
-def _kind_defaults(section: str) -> dict[str, Any]:
-    """Every registered set-up kind's own settings of ``section`` at their defaults, by kind
-    (the built-in kinds are registered once ``strand.app.kinds`` is imported, as reading a case
-    does)."""
-    return {kind.name: getattr(kind, KIND_SECTIONS[section])() for kind in registered()}
-
-
 class WithKinds:
     """A section holding the settings every set-up kind shares (its fields) and, in ``by_kind``,
     each registered kind's own (``SetupKind.load_settings``, ``step_settings``); all of them read
-    flat, as the case file writes them (``load.zone``)."""
+    flat, as the case file writes them (``load.zone``). ``by_kind`` is filled when a case is read
+    (``strand.app.case``): a section made in code holds the common settings alone."""
 
     by_kind: Mapping[str, Any]
 
@@ -82,46 +155,52 @@ class WithKinds:
         return replace(self, **values, by_kind=by_kind)
 
 
+_NO_KINDS: Mapping[str, Any] = MappingProxyType({})
+
+
 @dataclass(frozen=True)
 class LoadSettings(WithKinds):
-    kind: str = "saddle"  # a registered set-up kind (``strand.app.kinds``)
-    tension: float = 40e3  # N
-    cycle: tuple[float, ...] = (1.0, 0.0, -1.0, 0.0)
-    direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
-    sweep: tuple[float, ...] = ()  # amplitudes (N or 1/m), each cycled from one tensioned state
-    by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "load"), hash=False)
+    """The loads: the tension, then the set-up kind's cycle."""
 
-    UNITS: ClassVar[dict[str, str]] = {"tension": "N"}
-
-
-@dataclass(frozen=True, kw_only=True)
-class StepSettings(WithKinds):
-    tension: float = 1e3  # N
-    growth: float = 1.5  # the next increment over this one after a step of at most 6 iterations
-    cuts: int = 6
-    max_iterations: int = 12
-    stall: bool = True  # stop stagnating Newton attempts early (NewtonOptions.stall_after)
-    line_search: str = "cp"  # NewtonOptions.linesearch (docs/theory.md §6)
-    tolerance: float = 1e-2  # N
-    balance: float = 1e-4  # fraction of the mean wire tension (NewtonOptions.force_tol)
-    control: str = "growth"  # "growth" after easy solves, or "error": the predictor's miss
-    error_tolerance: float = 1e-6  # m, "error" control: the step's miss aimed at (ErrorControl)
-    retry: bool = True  # retry a failed step once with the other predictor before halving
-    predictor: bool = True  # start each solve from the secant predictor of the ramp's last step
-    iteration: str = "newton"  # NewtonOptions.iteration: "newton", "reuse_lu" or "lbfgs"
-    stabilise: float = 1e4  # N/m per pair: contact springs for a step that fails (Stabiliser)
-    by_kind: Mapping[str, Any] = field(default_factory=partial(_kind_defaults, "steps"), hash=False)
-
-    UNITS: ClassVar[dict[str, str]] = {
-        "tension": "N",
-        "growth": "",
-        "cuts": "",
-        "max_iterations": "",
-        "tolerance": "N",
-        "balance": "",
-        "error_tolerance": "m",
-        "stabilise": "N/m",
-    }
+    kind: str = setting(
+        "saddle",
+        "The set-up kind: saddle, bending, tension_cycle, fairlead or another registered one. "
+        "``strand.app.kinds``: saddle: a midspan saddle load (the seed "
+        "paper's test); bending: uniform bending by end rotations (the section's M–κ); "
+        "tension_cycle: the end force cycled by tension_swing (N), with a saddle load "
+        "fixed_lateral (N) held at midspan; fairlead: bent to bend_curvature (1/m), bend_radius "
+        "(m) or bend_angle (deg) over bend_length (m), held while the tension cycles by "
+        'tension_swing (N), or (cycled = "curvature") the curvature cycles about it by '
+        "curvature_swing (1/m).",
+    )
+    tension: float = setting(40e3, "End force, held during bending.", unit="N", read=_tension)
+    cycle: tuple[float, ...] = setting(
+        (1.0, 0.0, -1.0, 0.0),
+        "Targets after tensioning, in units of the kind's amplitude (lateral, curvature, "
+        "tension_swing); [0.0]: the tension alone.",
+        read=_cycle,
+        schema={"type": "array", "items": {"type": "number"}, "minItems": 1},
+    )
+    direction: tuple[float, ...] = setting(
+        (1.0, 0.0, 0.0),
+        "Direction of a positive lateral load / stretched fibre: [x, y, 0], across the strand "
+        "axis.",
+        read=_direction,
+        schema={"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3},
+    )
+    sweep: tuple[float, ...] = setting(
+        (),
+        "Amplitudes of the kind's parameter (lateral, curvature, …) to run, each from the same "
+        "tensioned state, into <folder>/<parameter>_<amplitude>/, with sweep.csv beside them; "
+        "[] runs the amplitude alone.",
+        read=_amplitudes,
+        schema={
+            "type": "array",
+            "items": {"type": "number", "exclusiveMinimum": 0},
+            "uniqueItems": True,
+        },
+    )
+    by_kind: Mapping[str, Any] = field(default=_NO_KINDS, hash=False)
 
 
 #: PETSc's line searches for Newton (``[steps] line_search``)
@@ -130,67 +209,245 @@ LINE_SEARCHES = ("cp", "basic", "bt", "l2")
 STEP_CONTROLS = ("growth", "error")
 
 
+@dataclass(frozen=True, kw_only=True)
+class StepSettings(WithKinds):
+    """The load steps and the Newton solves."""
+
+    tension: float = setting(
+        1e3,
+        "First tension increment (grows ×growth after easy steps); the first step closes "
+        "every contact pair without friction, so its size sets the wire forces' load-step "
+        "error (benchmarks/window.py).",
+        unit="N",
+    )
+    growth: float = setting(
+        1.5, "The next increment over this one after a step of at most 6 iterations."
+    )
+    cuts: int = setting(6, "Halvings allowed before a step is declared failed.")
+    max_iterations: int = setting(12, "Newton iterations per attempt.")
+    stall: bool = setting(
+        True,
+        "Cut an attempt whose residual has not halved in two iterations (from the 4th on): it "
+        "would not converge (false: run to the limit; NewtonOptions.stall_after).",
+    )
+    line_search: str = setting(
+        "cp",
+        "Newton's line search: PETSc's cp (critical point: one secant step along each Newton "
+        "direction), or basic (full steps), bt, l2 (NewtonOptions.linesearch, docs/theory.md "
+        "§6).",
+        choices=LINE_SEARCHES,
+    )
+    tolerance: float = setting(
+        1e-2, "Absolute residual tolerance (2.5e-7 of Cardinal's 40 kN).", unit="N"
+    )
+    balance: float = setting(
+        1e-4,
+        "Also converged when every node is in balance to this fraction of the mean wire "
+        "tension T/n; 0: off. No node out of balance by more than that (66 mN for Cardinal at "
+        "40 kN), nor by that force × the largest wire diameter in moment "
+        "(NewtonOptions.force_tol).",
+        sign="zero_is_off",
+    )
+    control: str = setting(
+        "growth",
+        "growth: ×growth after easy solves; error: from the predictor's miss (ErrorControl).",
+        choices=STEP_CONTROLS,
+    )
+    error_tolerance: float = setting(
+        1e-6, "Error control: the predictor's miss aimed at by each step.", unit="m"
+    )
+    retry: bool = setting(True, "Retry a failed step once with the other predictor, then halve.")
+    predictor: bool = setting(
+        True,
+        "Start each Newton solve of a ramp (tension, legs) from the secant predictor of its "
+        "last step; false: from the last converged state.",
+    )
+    iteration: str = setting(
+        "newton",
+        "newton: an LU per iteration; reuse_lu: GMRES on each Jacobian with an earlier one's "
+        "LU; lbfgs: L-BFGS on a solve's first LU; either falls back to Newton when it fails "
+        "(NewtonOptions.iteration, docs/theory.md §6).",
+        choices=_iterations,
+    )
+    stabilise: float = setting(
+        1e4,
+        "Springs (per pair) on every contact pair's slip for a step whose cuts are exhausted; "
+        "0: off. The step is tried again with them (near-mechanisms: wires rolling round the "
+        "layer below), and they are released when it converges; their energy over the strain "
+        "energy is reported (Stabiliser).",
+        unit="N/m",
+        sign="zero_is_off",
+    )
+    by_kind: Mapping[str, Any] = field(default=_NO_KINDS, hash=False)
+
+
 @dataclass(frozen=True)
 class OutputSettings:
-    folder: str = "results/cardinal"
-    fields: bool = True
-    vtx: bool = True
-    plots: bool = True
-    checkpoint: bool = True  # checkpoint.h5 (last converged state) and tensioned.h5
+    """What a run writes, and where."""
+
+    folder: str = setting(
+        "results/cardinal",
+        "The results folder; for a case file: results/<file name without .toml>.",
+    )
+    fields: bool = setting(True, "Field time series: XDMF (+ HDF5) for ParaView and meshio.")
+    vtx: bool = setting(
+        True, "With fields: also VTX (ADIOS2 .bp; as large again, ~250 MB for Cardinal)."
+    )
+    plots: bool = setting(True, "PNG figures at the end.")
+    checkpoint: bool = setting(
+        True,
+        "checkpoint.h5: the last converged state (strand run --restart), and tensioned.h5: the "
+        "state before the cycle (3.4 MB each for Cardinal).",
+    )
+
+
+def _sn_curves() -> tuple[str, ...]:
+    from ..fatigue.sn import SN_CURVES
+
+    return (*SN_CURVES, "custom", "user")
+
+
+def _steel_sn_curves() -> tuple[str, ...]:
+    from ..fatigue.sn import SN_CURVES
+
+    return (*SN_CURVES, "user", "none")
+
+
+def _mean_stress_laws() -> tuple[str, ...]:
+    from ..fatigue.meanstress import MEAN_STRESS_LAWS
+
+    return MEAN_STRESS_LAWS
+
+
+#: ``[fatigue] user_sn_given``, ``user_sn_use``: the user curve as given and as assessed
+USER_CURVE_LEVELS = ("characteristic", "mean")
 
 
 @dataclass(frozen=True, kw_only=True)
 class FatigueSettings:
-    outputs: bool = True  # contact_pairs.h5, wire_sections.h5 and the fatigue report
-    sn_curve: str = "cigre-sbl-multilayer"  # a built-in curve (fatigue.SN_CURVES), "custom", "user"
-    sn_A: float = 450.0  # MPa, custom: σ_a = A N^b up to the knee
-    sn_b: float = -0.2  # custom: the exponent b up to the knee
-    sn_knee: float = 2e7  # cycles
-    sn_A2: float = 263.0  # MPa, custom: σ_a = A2 N^b2 beyond the knee
-    sn_b2: float = -0.17  # custom: the exponent b2 beyond the knee
-    sn_layers: tuple[float, ...] = ()  # layers the curve applies to; () = those with E < 100 GPa
-    steel_sn_curve: str = "en1992-prestressing-steel"  # steel wires' curve, "user" or "none"
-    # a user's own curve (sn_curve or steel_sn_curve "user"): N = a1 Δσ^-m1, Δσ the range in MPa
-    user_sn_m1: float = 0.0  # its slope up to the knee (required)
-    user_sn_m2: float = 0.0  # its slope beyond the knee; 0: m1 throughout
-    user_sn_log_a: float = 0.0  # log10 a1 (Δσ in MPa); 0: the intercept is user_sn_range instead
-    user_sn_range: float = 0.0  # Pa, the range Δσ0 at user_sn_cycles (instead of user_sn_log_a)
-    user_sn_cycles: float = 2e6  # cycles at which user_sn_range is given
-    user_sn_knee: float = 1e7  # cycles where the slope turns from m1 to m2
-    user_sn_given: str = "characteristic"  # the curve as given: "characteristic" or "mean"
-    user_sn_use: str = "characteristic"  # the one assessed with: "characteristic" or "mean"
-    user_sn_sd: float = 0.0  # std. deviation of log10 N (characteristic: 2 below the mean)
-    user_sn_mean: float = 0.0  # Pa, the mean stress of the curve's tests (0: fully reversed)
-    mean_stress: str = "none"  # wire cycles' mean-stress correction: none, goodman, gerber, swt
-    design_fatigue_factor: float = 1.0  # DFF: every damage (wire and T–N) × DFF; 1: none
-    surface_points: int = 16  # points around each wire's circumference (ranges within 2 %)
-    clamp_distance: float = 0.089  # m, Poffenberger–Swart's measuring distance (3.5 in)
-    end_zone: float = 0.0  # m, clamp zone at each end; 0: half the longest lay length
-    stuck_slip: float = 1e-9  # m, a pair whose Coulomb slide stays below this stuck throughout
-    breaking_strength: float = 0.0  # N, the strand's MBS for API RP 2SK's T–N; 0: not given
-    spectrum: tuple[tuple[float, float], ...] = ()  # [[amplitude, cycles], ...]: run as the sweep
+    """The fatigue outputs and the curves they are assessed against."""
 
-    UNITS: ClassVar[dict[str, str]] = {
-        "sn_A": "MPa",
-        "sn_b": "",
-        "sn_knee": "cycles",
-        "sn_A2": "MPa",
-        "sn_b2": "",
-        "user_sn_m1": "",
-        "user_sn_m2": "",
-        "user_sn_log_a": "",
-        "user_sn_range": "Pa",
-        "user_sn_cycles": "cycles",
-        "user_sn_knee": "cycles",
-        "user_sn_sd": "",
-        "user_sn_mean": "Pa",
-        "design_fatigue_factor": "",
-        "surface_points": "",
-        "clamp_distance": "m",
-        "end_zone": "m",
-        "stuck_slip": "m",
-        "breaking_strength": "N",
-    }
+    outputs: bool = setting(
+        True, "Contact pair and wire section histories, and the fatigue report."
+    )
+    sn_curve: str = setting(
+        "cigre-sbl-multilayer",
+        'A built-in curve (``strand.fatigue.SN_CURVES``), or "custom" with σ_a = sn_A N^sn_b '
+        '(MPa) up to sn_knee cycles, sn_A2 N^sn_b2 beyond, or "user" (user_sn_*).',
+        choices=_sn_curves,
+    )
+    sn_A: float = setting(450.0, "Custom: σ_a = A N^b up to the knee.", unit="MPa")
+    sn_b: float = setting(-0.2, "Custom: the exponent b up to the knee.", sign="any")
+    sn_knee: float = setting(2e7, "Custom: the knee.", unit="cycles")
+    sn_A2: float = setting(263.0, "Custom: σ_a = A2 N^b2 beyond the knee.", unit="MPa")
+    sn_b2: float = setting(-0.17, "Custom: the exponent b2 beyond the knee.", sign="any")
+    sn_layers: tuple[float, ...] = setting(
+        (),
+        "Layers (0 = core) the curve applies to; [] = those with E < 100 GPa.",
+        schema={"type": "array", "items": {"type": "integer", "minimum": 0}},
+    )
+    steel_sn_curve: str = setting(
+        "en1992-prestressing-steel",
+        'The other steel wires\' (E ≥ 100 GPa) curve, or "en1992-steel-duct" (fretting), '
+        '"user", or "none": not assessed.',
+        choices=_steel_sn_curves,
+    )
+    user_sn_m1: float = setting(
+        0.0,
+        'A user\'s own curve (sn_curve or steel_sn_curve = "user"), N = a1 Δσ^-m1 (Δσ the range '
+        "in MPa): its slope to the knee (required).",
+        sign="zero_is_off",
+    )
+    user_sn_m2: float = setting(
+        0.0,
+        "The user curve's slope beyond the knee, continuous there; 0: m1 throughout.",
+        sign="zero_is_off",
+    )
+    user_sn_log_a: float = setting(
+        0.0,
+        "The user curve's intercept log10 a1 (Δσ in MPa); 0: user_sn_range instead.",
+        sign="zero_is_off",
+    )
+    user_sn_range: float = setting(
+        0.0,
+        "Or the user curve's intercept as the range Δσ0 at user_sn_cycles (instead of "
+        "user_sn_log_a).",
+        unit="Pa",
+        sign="zero_is_off",
+    )
+    user_sn_cycles: float = setting(2e6, "Cycles at which user_sn_range is given.", unit="cycles")
+    user_sn_knee: float = setting(
+        1e7, "Cycles where the user curve's slope turns from m1 to m2.", unit="cycles"
+    )
+    user_sn_given: str = setting(
+        "characteristic",
+        "The user curve as given: characteristic or mean.",
+        choices=USER_CURVE_LEVELS,
+    )
+    user_sn_use: str = setting(
+        "characteristic",
+        "The user curve assessed with: characteristic or mean.",
+        choices=USER_CURVE_LEVELS,
+    )
+    user_sn_sd: float = setting(
+        0.0,
+        "Standard deviation of log10 N: the characteristic curve lies two of them below the "
+        "mean (needed where use and given differ).",
+        sign="zero_is_off",
+    )
+    user_sn_mean: float = setting(
+        0.0,
+        "The mean stress of the user curve's tests (0: fully reversed).",
+        unit="Pa",
+        sign="zero_is_off",
+    )
+    mean_stress: str = setting(
+        "none",
+        "Wire-level mean-stress correction: none, goodman, gerber or swt (with the wires' "
+        "tensile_strength); none: the built-in curves come from tensioned tests "
+        "(docs/fatigue.md).",
+        choices=_mean_stress_laws,
+    )
+    design_fatigue_factor: float = setting(
+        1.0,
+        "DFF: every damage, wire-level and T–N, is the Miner sum × DFF (lives ÷ DFF); 1: none; "
+        "the standards' values: docs/fatigue.md.",
+    )
+    surface_points: int = setting(
+        16, "Points around each wire's circumference (ranges within 2 %)."
+    )
+    clamp_distance: float = setting(
+        0.089, "Poffenberger–Swart's distance from the clamp (3.5 in).", unit="m"
+    )
+    end_zone: float = setting(
+        0.0,
+        "Clamp zone at each end, reported apart from the free span; 0: half the longest lay "
+        "length (how far the ends' lock reaches).",
+        unit="m",
+        sign="zero_is_off",
+    )
+    stuck_slip: float = setting(
+        1e-9,
+        "A pair whose Coulomb slide stays below this stayed stuck throughout.",
+        unit="m",
+    )
+    breaking_strength: float = setting(
+        0.0,
+        "The strand's minimum breaking strength (MBS) for API RP 2SK's T–N; 0: not given.",
+        unit="N",
+        sign="zero_is_off",
+    )
+    spectrum: tuple[tuple[float, float], ...] = setting(
+        (),
+        "The load spectrum [[amplitude, cycles], ...], run as the sweep: Miner's sum per wire "
+        "and pair. It gives the cycles in a period (a year, the design life) at each "
+        "amplitude of lateral (N), curvature (1/m) or tension_swing (N); writes spectrum.csv, "
+        "spectrum.txt; or "
+        "a table [fatigue.spectrum] with classes = [[...], ...], as strand spectrum prints it "
+        "(beside [fatigue], no second one).",
+        read=_spectrum,
+        schema=_SPECTRUM,
+    )
 
     def user_curve(self):
         """The user's own S–N curve (``user_sn_*``; ``strand.fatigue.sn.user_curve``): the one
@@ -332,16 +589,3 @@ SECTIONS = {
     "output": OutputSettings,
     "fatigue": FatigueSettings,
 }
-
-
-def unit_of(section: str, key: str) -> str:
-    """The SI unit of the number ``[section] key`` (its settings class's ``UNITS``, or a set-up
-    kind's own); "" for a ratio, a count or a setting that is not a number."""
-    classes = [SECTIONS[section]]
-    if section in KIND_SECTIONS:
-        classes += [getattr(kind, KIND_SECTIONS[section]) for kind in registered()]
-    for cls in classes:
-        units = getattr(cls, "UNITS", {})
-        if key in units:
-            return units[key]
-    return ""

@@ -42,6 +42,7 @@ from ..cable.description import Cable, CableError, Layer
 __all__ = [
     "FIRST_LAYER",
     "SAME_LAYER",
+    "SAME_LAYER_STENCILS",
     "helix_clearance",
     "ring_lift",
     "spread_gaps",
@@ -54,6 +55,10 @@ Array = npt.NDArray[np.float64]
 SAME_LAYER = ("off", "nominal", "packed", "random")
 #: choices of ``[contact] first_layer``: the first helical layer on the core, or vaulted over it
 FIRST_LAYER = ("on_core", "ring")
+#: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], node a to the
+#: neighbour's nearest node c [c, a], or station a to the node c that faces it exactly [c, a]
+#: (small sliding, on a geometry with facing stations)
+SAME_LAYER_STENCILS = ("segment", "node", "facing")
 
 
 def helix_clearance(layer: Layer) -> float:

@@ -61,7 +61,7 @@ from ..contact.kinematics import rotation_matrix
 from ..contact.normal_laws import NormalLaw, SmoothOnset
 from ..contact.segment import SegmentGroup
 from .compliances import Wires, compliance_named
-from .layer_states import SAME_LAYER, helix_clearance, spread_gaps
+from .layer_states import SAME_LAYER, SAME_LAYER_STENCILS, helix_clearance, spread_gaps
 
 __all__ = [
     "SAME_LAYER_STENCILS",
@@ -75,10 +75,6 @@ __all__ = [
 Array = npt.NDArray[np.float64]
 Int = npt.NDArray[np.int64]
 
-#: choices of ``[contact] same_layer_stencil``: node to segment [a, b₀, b₁], node a to the
-#: neighbour's nearest node c [c, a], or station a to the node c that faces it exactly [c, a]
-#: (small sliding, on a geometry with facing stations)
-SAME_LAYER_STENCILS = ("segment", "node", "facing")
 #: the stencils of two nodes [c, a], pairs of ``contact.element.ContactGroup``
 TWO_NODE_STENCILS = ("node", "facing")
 

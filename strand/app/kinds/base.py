@@ -11,6 +11,7 @@ from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Any
 
+from ...beam.setting import declared
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ..errors import CaseError
 from ..kind_registry import add, lookup, registered
@@ -46,9 +47,10 @@ class SetupKind(ABC):
         measure: the field of its set-up's ``state()`` a sweep reports at the peak and back at
             zero load.
         load_settings, step_settings: frozen dataclasses of its own ``[load]`` and ``[steps]``
-            settings, with their defaults (names distinct from every other setting there); a
-            class dict ``UNITS`` (setting → SI unit) puts the units into error messages.
-        signed: its ``[load]`` settings that may be zero or negative.
+            settings, each field declared with ``strand.beam.setting.setting`` (default, unit,
+            sign, choices, meaning; names distinct from every other setting there): the case
+            reader, ``strand run --help``, the settings reference, the template and the JSON
+            Schema take them from there when a case is read.
         clamp: the set-up clamps the strand at z = 0 (the fatigue report's Poffenberger–Swart
             check at the clamp).
         example: settings (``--set`` form, "section.key=value") that a case of the kind needs
@@ -64,7 +66,6 @@ class SetupKind(ABC):
     measure: str = ""
     load_settings: type = NoSettings
     step_settings: type = NoSettings
-    signed: frozenset[str] = frozenset()
     clamp: bool = False
     example: tuple[str, ...] = ()
 
@@ -172,10 +173,17 @@ def tension_stage(case: Case) -> Stage:
 
 def register(kind: SetupKind) -> SetupKind:
     """Add ``kind`` to the registry (a ``ValueError`` if its name, or the name of one of its own
-    settings, is taken: by another kind, or by a setting every kind shares)."""
+    settings, is taken: by another kind, or by a setting every kind shares; or if one of its
+    own settings is not declared with ``setting``)."""
     if kind.name in {other.name for other in registered()}:
         raise ValueError(f"a set-up kind named {kind.name!r} is registered already")
     for section, common in (("load_settings", LoadSettings), ("step_settings", StepSettings)):
+        undeclared = [f.name for f in fields(getattr(kind, section)) if declared(f) is None]
+        if undeclared:
+            raise ValueError(
+                f"{kind.name}: settings {undeclared} are not declared: give each its default, "
+                "unit and meaning with strand.beam.setting.setting"
+            )
         mine = {f.name for f in fields(getattr(kind, section))}
         owners = {f.name: "every kind" for f in fields(common) if f.name != "by_kind"}
         for other in registered():

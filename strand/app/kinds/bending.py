@@ -14,12 +14,12 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from functools import partial
 from pathlib import Path
-from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
 
 from ...analytical import StickEstimate
+from ...beam.setting import setting
 from ...cable.description import Cable
 from ...model.layer_fields import LayerFields
 from ...setups.bending import ZoneBending
@@ -44,20 +44,18 @@ __all__ = [
 class BendingLoad:
     """``[load]`` settings of the uniform bending test."""
 
-    curvature: float = 0.5  # 1/m, nominal curvature amplitude
-    zone: float = 0.4  # m, central zone where the curvature is measured
-
-    UNITS: ClassVar[dict[str, str]] = {"curvature": "1/m", "zone": "m"}
+    curvature: float = setting(0.5, "Nominal curvature amplitude.", unit="1/m", sign="any")
+    zone: float = setting(
+        0.4, "Central zone where the curvature is measured (bending, fairlead).", unit="m"
+    )
 
 
 @dataclass(frozen=True)
 class BendingSteps:
     """``[steps]`` settings of the uniform bending test."""
 
-    curvature: float = 0.005  # 1/m, first curvature increment of each leg
-    curvature_max: float = 0.05  # 1/m, largest curvature increment
-
-    UNITS: ClassVar[dict[str, str]] = {"curvature": "1/m", "curvature_max": "1/m"}
+    curvature: float = setting(0.005, "First curvature increment of each leg.", unit="1/m")
+    curvature_max: float = setting(0.05, "Largest curvature increment.", unit="1/m")
 
 
 class UniformBending(SetupKind):
@@ -71,7 +69,6 @@ class UniformBending(SetupKind):
     measure = "curvature"
     load_settings = BendingLoad
     step_settings = BendingSteps
-    signed = frozenset({"curvature"})
     clamp = False
 
     def load_text(self, value: float) -> str:

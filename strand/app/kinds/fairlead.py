@@ -35,12 +35,12 @@ import math
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
 
 from ...analytical.fibre import fibre_model
+from ...beam.setting import declared, setting
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ..errors import CaseError
 from ..settings import Case
@@ -64,38 +64,45 @@ CYCLED = {"tension": "tension_swing", "curvature": "curvature_swing"}
 
 @dataclass(frozen=True, kw_only=True)
 class FairleadLoad:
-    """``[load]`` settings of the fairlead test.
+    """``[load]`` settings of the fairlead test (each ≥ 0, checked by ``Fairlead``)."""
 
-    Attributes:
-        bend_curvature: the curvature κ of the strand's axis at the fairlead, 1/m; 0: given
-            otherwise.
-        bend_radius: or the radius R of the strand's axis over the sheave or in the bend
-            stiffener (the groove's radius plus half the strand's diameter), m: κ = 1/R; 0: given
-            otherwise.
-        bend_angle: or the angle the line turns through over ``bend_length``, deg: κ = angle /
-            length, the mean curvature (a bend stiffener's peak is higher); 0: given otherwise.
-        bend_length: the length over which ``bend_angle`` is turned, m.
-        cycled: what the cycle varies: "tension" (the end force over [load] tension + cycle ×
-            tension_swing, the curvature held) or "curvature" (κ + cycle × curvature_swing,
-            the tension held).
-        curvature_swing: the curvature's amplitude about κ when it is cycled, 1/m (a line
-            whose angle at the fairlead swings: its curvature there swings with it).
-    """
-
-    bend_curvature: float = 0.0  # 1/m
-    bend_radius: float = 0.0  # m
-    bend_angle: float = 0.0  # deg
-    bend_length: float = 0.0  # m
-    cycled: str = "tension"  # "tension" or "curvature"
-    curvature_swing: float = 0.0  # 1/m
-
-    UNITS: ClassVar[dict[str, str]] = {
-        "bend_curvature": "1/m",
-        "bend_radius": "m",
-        "bend_angle": "deg",
-        "bend_length": "m",
-        "curvature_swing": "1/m",
-    }
+    bend_curvature: float = setting(
+        0.0,
+        "The curvature κ of the strand's axis at the fairlead; 0: given otherwise.",
+        unit="1/m",
+        sign="any",
+    )
+    bend_radius: float = setting(
+        0.0,
+        "Or the radius R of the strand's axis over the sheave or in the bend stiffener (the "
+        "groove's radius plus half the strand's diameter): κ = 1/R; 0: given otherwise.",
+        unit="m",
+        sign="any",
+    )
+    bend_angle: float = setting(
+        0.0,
+        "Or the angle the line turns through over ``bend_length``: κ = angle / length, the "
+        "mean curvature (a bend stiffener's peak is higher); 0: given otherwise.",
+        unit="deg",
+        sign="any",
+    )
+    bend_length: float = setting(
+        0.0, "The length over which ``bend_angle`` is turned.", unit="m", sign="any"
+    )
+    cycled: str = setting(
+        "tension",
+        'What the cycle varies: "tension" (the end force over [load] tension + cycle × '
+        'tension_swing, the curvature held) or "curvature" (κ + cycle × curvature_swing, the '
+        "tension held).",
+        choices=tuple(CYCLED),
+    )
+    curvature_swing: float = setting(
+        0.0,
+        "The curvature's amplitude about κ when it is cycled (a line whose angle at the "
+        "fairlead swings: its curvature there swings with it).",
+        unit="1/m",
+        sign="any",
+    )
 
 
 def held_curvature(load: FairleadLoad) -> float:
@@ -124,7 +131,6 @@ class Fairlead(SetupKind):
 
     name = "fairlead"
     load_settings = FairleadLoad
-    signed = frozenset({*CURVATURE_INPUTS, "bend_length", "curvature_swing"})  # here: ≥ 0
     clamp = False  # Poffenberger–Swart's clamp is not a fairlead's
     example = ("load.bend_radius=5.0",)  # the curvature has no default
 
@@ -145,22 +151,17 @@ class Fairlead(SetupKind):
 
     # -- settings ----------------------------------------------------------------------------------
     def check_settings(self, load: FairleadLoad, steps) -> None:
-        """Its own settings alone, in a case of any kind: no negative curvature input, a known
-        ``cycled`` (the shared steps are checked by their own kinds)."""
+        """Its own settings alone, in a case of any kind: no negative curvature input (the
+        shared steps are checked by their own kinds; ``cycled`` by its declaration)."""
         for key in (*CURVATURE_INPUTS, "bend_length", "curvature_swing"):
             value = getattr(load, key)
             if value < 0:
-                unit = FairleadLoad.UNITS[key]
+                unit = declared(FairleadLoad.__dataclass_fields__[key]).unit
                 raise CaseError(
                     f"[load] {key} = {value:g} {unit}: expected a positive value (the bending "
                     "direction is [load] direction, the cycle gives the swing's signs), or 0 "
                     "for none"
                 )
-        if load.cycled not in CYCLED:
-            raise CaseError(
-                f'[load] cycled = {load.cycled!r}: expected "tension" (the end force cycled, '
-                'the curvature held) or "curvature" (the curvature cycled, the tension held)'
-            )
 
     def check_case(self, case: Case) -> None:
         """Exactly one curvature input; the zone shorter than the strand; a tension cycle that

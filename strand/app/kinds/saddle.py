@@ -34,11 +34,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import ClassVar
 
 import numpy as np
 import numpy.typing as npt
 
+from ...beam.setting import setting
 from ..errors import CaseError
 from ..layer_report import layer_pressure_figure, layer_pressure_lines
 from ..settings import Case
@@ -66,41 +66,43 @@ DISPLACEMENTS = ("deflection", "yb")
 class SaddleLoad:
     """``[load]`` settings of the saddle test."""
 
-    lateral: float = 4.3e3  # N, saddle load amplitude
-    saddle_length: float = 0.02  # m, axial length of the saddle at midspan
-    control: str = "force"  # force: the amplitude is lateral; displacement: deflection or yb
-    deflection: float = 0.0  # m, displacement control: midspan deflection amplitude; 0: none
-    yb: float = 0.0  # m, displacement control: Y_b, peak-to-peak at [fatigue] clamp_distance
-
-    UNITS: ClassVar[dict[str, str]] = {
-        "lateral": "N",
-        "saddle_length": "m",
-        "deflection": "m",
-        "yb": "m",
-    }
+    lateral: float = setting(4.3e3, "Saddle load amplitude.", unit="N", sign="any")
+    saddle_length: float = setting(0.02, "Axial length of the saddle at midspan.", unit="m")
+    control: str = setting(
+        "force",
+        "force: the amplitude is the saddle load lateral; displacement: the saddle load that "
+        "gives deflection (m, midspan) or yb (m, Y_b at [fatigue] clamp_distance).",
+        choices=("force", "displacement"),
+    )
+    deflection: float = setting(
+        0.0,
+        "Displacement control: the midspan deflection amplitude; 0: none.",
+        unit="m",
+        sign="any",
+    )
+    yb: float = setting(
+        0.0,
+        "Displacement control: Y_b, peak-to-peak at [fatigue] clamp_distance from the clamp; "
+        "0: none.",
+        unit="m",
+        sign="any",
+    )
 
 
 @dataclass(frozen=True)
 class SaddleSteps:
     """``[steps]`` settings of the saddle test."""
 
-    lateral: float = 125.0  # N, first lateral increment of each leg of the cycle
-    lateral_max: float = (
-        200.0  # N, largest lateral increment (the load-step error: docs/benchmarks)
+    lateral: float = setting(125.0, "First lateral increment of each leg of the cycle.", unit="N")
+    lateral_max: float = setting(
+        200.0, "Largest lateral increment (sets the load-step error: docs/benchmarks).", unit="N"
     )
-    deflection: float = 5e-4  # m, displacement control: first deflection increment of a leg
-    deflection_max: float = 2e-3  # m, largest deflection increment
-    yb: float = 5e-5  # m, displacement control: first yb increment of a leg
-    yb_max: float = 2e-4  # m, largest yb increment
-
-    UNITS: ClassVar[dict[str, str]] = {
-        "lateral": "N",
-        "lateral_max": "N",
-        "deflection": "m",
-        "deflection_max": "m",
-        "yb": "m",
-        "yb_max": "m",
-    }
+    deflection: float = setting(
+        5e-4, "Displacement control: first deflection increment of a leg.", unit="m"
+    )
+    deflection_max: float = setting(2e-3, "Largest deflection increment.", unit="m")
+    yb: float = setting(5e-5, "Displacement control: first yb increment of a leg.", unit="m")
+    yb_max: float = setting(2e-4, "Largest yb increment.", unit="m")
 
 
 class Saddle(SetupKind):
@@ -114,7 +116,6 @@ class Saddle(SetupKind):
     measure = "deflection"
     load_settings = SaddleLoad
     step_settings = SaddleSteps
-    signed = frozenset({"lateral", *DISPLACEMENTS})
     clamp = True
 
     def check_settings(self, load, steps) -> None:
@@ -130,11 +131,6 @@ class Saddle(SetupKind):
                     f"[load] {name} = {getattr(load, name)} m: expected a positive "
                     "amplitude (the cycle gives the signs), or 0 for none"
                 )
-        if load.control not in ("force", "displacement"):
-            raise CaseError(
-                f'[load] control = {load.control!r}: expected "force" (the amplitude is the '
-                'saddle load lateral) or "displacement" (the amplitude is deflection or yb)'
-            )
 
     def check_case(self, case: Case) -> None:
         length, h_max = case.mesh.length, case.mesh.h_max

@@ -19,11 +19,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import partial
-from typing import ClassVar
 
 import numpy as np
 
 from ...analytical.fibre import fibre_model
+from ...beam.setting import setting
 from ...model.programme import LoadProgramme, Stage, cycle_stages
 from ...setups.tension_cycle import TensionCycleState, TensionCycleTest, TensionSection
 from ..errors import CaseError
@@ -46,20 +46,20 @@ __all__ = [
 class TensionCycleLoad:
     """``[load]`` settings of the tension cycle."""
 
-    tension_swing: float = 10e3  # N, amplitude of the end force about [load] tension
-    fixed_lateral: float = 0.0  # N, saddle load at midspan held through the cycle; 0: none
-
-    UNITS: ClassVar[dict[str, str]] = {"tension_swing": "N", "fixed_lateral": "N"}
+    tension_swing: float = setting(
+        10e3, "Amplitude of the end force about [load] tension.", unit="N"
+    )
+    fixed_lateral: float = setting(
+        0.0, "Saddle load at midspan held through the cycle; 0: none.", unit="N", sign="any"
+    )
 
 
 @dataclass(frozen=True)
 class TensionCycleSteps:
     """``[steps]`` settings of the tension cycle."""
 
-    tension_swing: float = 1e3  # N, first increment of each leg of the cycle
-    tension_swing_max: float = 4e3  # N, largest increment
-
-    UNITS: ClassVar[dict[str, str]] = {"tension_swing": "N", "tension_swing_max": "N"}
+    tension_swing: float = setting(1e3, "First increment of each leg of the cycle.", unit="N")
+    tension_swing_max: float = setting(4e3, "Largest increment.", unit="N")
 
 
 @dataclass(frozen=True)
@@ -93,7 +93,6 @@ class TensionCycle(SetupKind):
     measure = "end_displacement"
     load_settings = TensionCycleLoad
     step_settings = TensionCycleSteps
-    signed = frozenset({"fixed_lateral"})
     clamp = False  # Poffenberger–Swart relates a bending amplitude to stress, not a tension cycle
 
     def check_case(self, case: Case) -> None:

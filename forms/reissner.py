@@ -66,6 +66,8 @@ def check_beam_unknown(w) -> None:
     """Raise ``ValueError`` in one line unless ``w`` is (6,)-valued on a 1D mesh in 3D, the only
     setting the beam forms are written for (UFL would fail later with an index error)."""
     domain = ufl.domain.extract_unique_domain(w)
+    if domain is None:
+        raise ValueError("the beam's unknown must be a Function on a mesh (found no domain)")
     tdim, gdim = domain.topological_dimension, domain.geometric_dimension  # ufl ≥ 2025: ints
     if (tdim, gdim) != (1, 3):
         raise ValueError(

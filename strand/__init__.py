@@ -64,6 +64,7 @@ def _load_ours(ours: Path) -> None:
     spec = importlib.util.spec_from_file_location(
         "forms", init, submodule_search_locations=[str(ours)]
     )
+    assert spec is not None and spec.loader is not None  # a .py file that exists: always
     module = importlib.util.module_from_spec(spec)
     sys.modules["forms"] = module
     spec.loader.exec_module(module)

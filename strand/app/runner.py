@@ -18,6 +18,7 @@ from ..beam.parallel import is_root
 from ..model.cell_results import CellEvaluator, cell_results
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme
+from ..setups import TestSetup
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
 from .checks import tension_warning
@@ -68,7 +69,7 @@ class Progress:
 
 def case_recorders(
     case: Case,
-    problem: StrandProblem,
+    problem: StrandProblem[TestSetup],
     folder: Path,
     parameter: str,
     key_states: KeyStates,
@@ -116,7 +117,7 @@ class Recording:
         self,
         case: Case,
         kind: SetupKind,
-        problem: StrandProblem,
+        problem: StrandProblem[TestSetup],
         programme: LoadProgramme,
         result: RunResult,
         stream,
@@ -246,7 +247,7 @@ def _warn_of_tension(case: Case, result: RunResult, stream) -> None:
 
 def run_programme_with_outputs(
     case: Case,
-    problem: StrandProblem,
+    problem: StrandProblem[TestSetup],
     programme: LoadProgramme,
     folder: Path,
     stream,
@@ -291,7 +292,7 @@ def run_programme_with_outputs(
 
 
 def _take_programme(
-    problem: StrandProblem,
+    problem: StrandProblem[TestSetup],
     programme: LoadProgramme,
     recording: Recording,
     start: Start | None,
@@ -329,7 +330,7 @@ def _written(result: RunResult) -> str:
 
 
 def _report_and_figures(
-    case: Case, result: RunResult, problem: StrandProblem, recording: Recording, stream
+    case: Case, result: RunResult, problem: StrandProblem[TestSetup], recording: Recording, stream
 ) -> None:
     """The fatigue report (with a cycle and the histories) and the figures, on rank 0."""
     report = None

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -190,7 +191,7 @@ def _wire(d: dict, where: str) -> Wire:
     )
 
 
-def _check_keys(d, allowed: set[str], where: str) -> None:
+def _check_keys(d: object, allowed: AbstractSet[str], where: str) -> None:
     if not isinstance(d, dict):
         raise CableError(f"{where}: expected a table, got {type(d).__name__}")
     unknown = sorted(set(d) - allowed)

@@ -27,6 +27,8 @@ class TestSetup(ABC):
         units: each parameter's unit as written in column names ("N", "1_per_m").
         cycle_parameter: the one a load programme cycles after tensioning.
         state_type, bending_type: the record types of ``state()`` and ``moment_curvature()``.
+        direction: the unit vector across the strand's axis that its loads bend it towards
+            (the neutral axis of the cell results is e_z × ``direction``).
         bcs: Dirichlet conditions on the model's space.
         terms: pair terms (ties, nodal loads) for the solver.
     """
@@ -36,6 +38,7 @@ class TestSetup(ABC):
     cycle_parameter: str = ""
     state_type: type
     bending_type: type
+    direction: npt.NDArray[np.float64]
     bcs: list
     terms: list
 

@@ -50,7 +50,7 @@ class FieldWriter:
         self,
         path: str | Path,
         beam: ReissnerBeam,
-        cell_data=(),
+        cell_data: Sequence[fem.Function] = (),
         vtx: bool = True,
         loads: Sequence[str] = (),
     ):

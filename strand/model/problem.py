@@ -70,7 +70,7 @@ class StrandProblem[S: Conditions]:
         *,
         setup: Callable[[StrandModel], S],
         comm: MPI.Comm = MPI.COMM_WORLD,
-        monitor=None,
+        monitor: Callable[[int, float], None] | None = None,
         beam: BeamFactory = ReissnerBeam,
     ):
         self.model = StrandModel(geometry, contact, comm, beam=beam)

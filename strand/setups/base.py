@@ -10,11 +10,18 @@ set-up's records as CSV columns named ``<field>_<unit>``. Units: m, N, N m, rad.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
 from ..solver import NodalLoad
+
+if TYPE_CHECKING:
+    from ..model.cell_results import CellResults
+
+Array = npt.NDArray[np.float64]
 
 __all__ = ["TestSetup", "PenaltyLinks", "pilot_links", "owned_load"]
 
@@ -56,7 +63,7 @@ class TestSetup(ABC):
         ``progress()`` method giving the measure a progress line shows)."""
 
     @abstractmethod
-    def moment_curvature(self, cells, residual):
+    def moment_curvature(self, cells: CellResults, residual: Array):
         """The bending measures at the current state (a frozen dataclass), given the cell
         results (``cell_results.cell_results``) and the unconstrained residual (n_blocks, 6), whose
         values at supported dofs are the reactions."""
@@ -95,7 +102,7 @@ class PenaltyLinks:
         components: displacement components tied (0, 1, 2 = x, y, z).
     """
 
-    def __init__(self, pairs: npt.ArrayLike, stiffness: float, components=(2,)):
+    def __init__(self, pairs: npt.ArrayLike, stiffness: float, components: Sequence[int] = (2,)):
         self.stencils = np.asarray(pairs, dtype=np.int32).reshape(-1, 2)
         self.k = stiffness
         self.components = np.asarray(components, dtype=np.intp).reshape(-1)
@@ -107,7 +114,7 @@ class PenaltyLinks:
             K[i, j] = K[j, i] = -stiffness
         self._K = np.broadcast_to(K, (len(self.stencils), 12, 12))
 
-    def evaluate(self, w, jacobian):
+    def evaluate(self, w: Array, jacobian: bool) -> tuple[Array, Array | None]:
         c = self.components
         du = w[self.stencils[:, 1]][:, c] - w[self.stencils[:, 0]][:, c] - self.offset
         f = np.zeros((len(du), 12))

@@ -1,0 +1,37 @@
+"""The built-in cables are the data files ``strand/cable/data/<name>.toml``: each is found by its
+name alone, builds, and is the cable its named function gives; a case file finds every one."""
+
+from __future__ import annotations
+
+import pytest
+
+from strand.cable.description import (
+    CableError,
+    built_in_cable,
+    built_in_cables,
+    cardinal,
+    judge120,
+)
+
+
+def test_every_data_file_is_a_built_in_cable():
+    assert built_in_cables() == ("cardinal", "judge120")
+    for name in built_in_cables():
+        assert built_in_cable(name).layers
+
+
+def test_the_named_functions_give_the_files_cables():
+    assert built_in_cable("cardinal") == cardinal()
+    assert built_in_cable("Judge120") == judge120()
+
+
+def test_an_unknown_name_lists_the_built_in_cables():
+    with pytest.raises(CableError, match="built-in cables: cardinal, judge120"):
+        built_in_cable("drake")
+
+
+def test_a_case_file_finds_every_built_in_cable():
+    # the case files' table of built-in cables (strand.app.case) follows the data files
+    from strand.app.case import BUILTIN_CABLES
+
+    assert sorted(BUILTIN_CABLES) == list(built_in_cables())

@@ -36,6 +36,7 @@ from __future__ import annotations
 import copy
 import math
 import numbers
+from typing import TYPE_CHECKING
 
 import ufl
 
@@ -47,6 +48,13 @@ from .rotations import (
     quaternion_matrix,
     quaternion_product,
 )
+
+if TYPE_CHECKING:
+    from dolfinx import fem
+    from dolfinx.mesh import Mesh
+
+#: a section's property: a number, or UFL data (a ``Constant``, a cell-wise ``Function``)
+SectionValue = float | ufl.core.expr.Expr
 
 __all__ = [
     "CircularSection",
@@ -62,10 +70,12 @@ __all__ = [
 REDUCED_QUADRATURE = {"quadrature_degree": 1}
 
 
-def check_beam_unknown(w) -> None:
+def check_beam_unknown(w: fem.Function) -> None:
     """Raise ``ValueError`` in one line unless ``w`` is (6,)-valued on a 1D mesh in 3D, the only
     setting the beam forms are written for (UFL would fail later with an index error)."""
     domain = ufl.domain.extract_unique_domain(w)
+    if domain is None:
+        raise ValueError("the beam's unknown must be a Function on a mesh (found no domain)")
     tdim, gdim = domain.topological_dimension, domain.geometric_dimension  # ufl ≥ 2025: ints
     if (tdim, gdim) != (1, 3):
         raise ValueError(
@@ -80,7 +90,7 @@ def check_beam_unknown(w) -> None:
         )
 
 
-def unit_tangent(mesh) -> ufl.core.expr.Expr:
+def unit_tangent(mesh: Mesh) -> ufl.core.expr.Expr:
     """Unit tangent of each cell of a 1D mesh embedded in 3D, oriented along the cell's node order."""
     J = ufl.Jacobian(mesh)
     t = ufl.as_vector([J[0, 0], J[1, 0], J[2, 0]])
@@ -119,7 +129,14 @@ class CircularSection:
     ``strain_energy_density`` (a nonlinear one: ``ReissnerBeam``).
     """
 
-    def __init__(self, d, E, nu, shear_coefficient=None, torsional_stiffness=None):
+    def __init__(
+        self,
+        d: SectionValue,
+        E: SectionValue,
+        nu: SectionValue,
+        shear_coefficient: SectionValue | None = None,
+        torsional_stiffness: SectionValue | None = None,
+    ):
         self._arguments = (d, E, nu, shear_coefficient, torsional_stiffness)
         self.d, self.E, self.nu = d, E, nu
         self.torsional_stiffness = torsional_stiffness
@@ -131,7 +148,7 @@ class CircularSection:
         self.second_moment = math.pi * d**4 / 64
         self.polar_moment = math.pi * d**4 / 32
 
-    def on_mesh(self, mesh) -> CircularSection:
+    def on_mesh(self, mesh: Mesh) -> CircularSection:
         """This section with each number among its arguments held by a cell-wise (DG0) function
         of ``mesh``; ``Constant`` and ``Function`` arguments are kept. Its forms are those of a
         strand's layer sections (cell-wise d, E, ν), so one compiled kernel serves both."""
@@ -232,7 +249,13 @@ class ReissnerBeam:
     #: does not inherit it: it sets it again if true (``has_elastic_stresses``)
     elastic_stresses: bool = True
 
-    def __init__(self, w, section: CircularSection, frame=None, dx=None):
+    def __init__(
+        self,
+        w: fem.Function,
+        section: CircularSection,
+        frame: ufl.core.expr.Expr | None = None,
+        dx: ufl.Measure | None = None,
+    ):
         check_beam_unknown(w)
         mesh = w.function_space.mesh
         self.w = w
@@ -252,7 +275,7 @@ class ReissnerBeam:
         #: relative rotation vector of the two nodes, in the frame of node a (= of the midpoint)
         self.phi = quaternion_log(quaternion_product(quaternion_conjugate(q_a), q_b))
 
-    def d_ds(self, f):
+    def d_ds(self, f: ufl.core.expr.Expr) -> ufl.core.expr.Expr:
         """Derivative along the cell, d/ds."""
         return ufl.dot(ufl.grad(f), self.t)
 
@@ -305,7 +328,7 @@ class ReissnerBeam:
         """Strain energy (J): ∫ ψ dx with ``strain_energy_density`` ψ."""
         return self.strain_energy_density() * self.dx
 
-    def residual(self, v=None) -> ufl.Form:
+    def residual(self, v: ufl.Argument | None = None) -> ufl.Form:
         """Internal virtual work δΠ(w; v) (J per unit of ``v``), the derivative of ``energy``;
         add external work with a minus sign. Override it for a law without an energy: the
         virtual work ∫ (N·δΓ + M·δK) dx of one's own resultants, with δΓ, δK from
@@ -319,14 +342,14 @@ class ReissnerBeam:
 LAW_MEMBERS = ("N", "M", "strain_energy_density", "residual")
 
 
-def has_elastic_stresses(beam) -> bool:
+def has_elastic_stresses(beam: object) -> bool:
     """Whether the beam law ``beam`` (an instance or a class) declares Navier's stresses:
     ``elastic_stresses`` true, set by the class that last defines the law (``LAW_MEMBERS``) or
     by one derived from it, or on the instance. A subclass of ``ReissnerBeam`` with a law of
     its own (softening, plasticity) is thus not taken at its parent's word; an object without
     the attribute does not declare it."""
     if not isinstance(beam, type) and "elastic_stresses" in getattr(beam, "__dict__", {}):
-        return bool(beam.elastic_stresses)
+        return bool(vars(beam)["elastic_stresses"])
     cls = beam if isinstance(beam, type) else type(beam)
     declared = next((k for k in cls.__mro__ if "elastic_stresses" in vars(k)), None)
     if declared is None or not declared.elastic_stresses:
@@ -338,7 +361,9 @@ def has_elastic_stresses(beam) -> bool:
     return True
 
 
-def moment_virtual_work(moment, theta, v_theta) -> ufl.core.expr.Expr:
+def moment_virtual_work(
+    moment: ufl.core.expr.Expr, theta: ufl.core.expr.Expr, v_theta: ufl.core.expr.Expr
+) -> ufl.core.expr.Expr:
     """Virtual work m·δω = m·T(θ)δθ of a fixed-direction (spatial) moment m on the rotation dofs.
 
     Integrate it on the points where the moment acts (e.g. ``ds(tag)`` at a wire end).

@@ -16,6 +16,9 @@ from __future__ import annotations
 
 import ufl
 
+#: a quaternion as (scalar part, vector part)
+Quaternion = tuple[ufl.core.expr.Expr, ufl.core.expr.Expr]
+
 SMALL_ANGLE = 1e-2  # rad; the series below is accurate to ~1e-17 there
 
 __all__ = [
@@ -84,25 +87,25 @@ def quaternion(theta: ufl.core.expr.Expr):
     return q0, s * theta
 
 
-def quaternion_product(p, q):
+def quaternion_product(p: Quaternion, q: Quaternion) -> Quaternion:
     """Hamilton product p q of quaternions given as (scalar, vector)."""
     p0, pv = p
     q0, qv = q
     return p0 * q0 - ufl.dot(pv, qv), p0 * qv + q0 * pv + ufl.cross(pv, qv)
 
 
-def quaternion_conjugate(q):
+def quaternion_conjugate(q: Quaternion) -> Quaternion:
     return q[0], -q[1]
 
 
-def quaternion_matrix(q) -> ufl.core.expr.Expr:
+def quaternion_matrix(q: Quaternion) -> ufl.core.expr.Expr:
     """Rotation matrix of a quaternion q (normalised here, so q may be any non-zero multiple)."""
     q0, v = q
     n2 = q0**2 + ufl.dot(v, v)
     return ((q0**2 - ufl.dot(v, v)) * ufl.Identity(3) + 2 * ufl.outer(v, v) + 2 * q0 * skew(v)) / n2
 
 
-def quaternion_log(q) -> ufl.core.expr.Expr:
+def quaternion_log(q: Quaternion) -> ufl.core.expr.Expr:
     """Rotation vector of a unit quaternion with q0 > 0 (rotation angle below π)."""
     q0, v = q
     v2 = ufl.dot(v, v)

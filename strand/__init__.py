@@ -64,6 +64,7 @@ def _load_ours(ours: Path) -> None:
     spec = importlib.util.spec_from_file_location(
         "forms", init, submodule_search_locations=[str(ours)]
     )
+    assert spec is not None and spec.loader is not None  # a .py file that exists: always
     module = importlib.util.module_from_spec(spec)
     sys.modules["forms"] = module
     spec.loader.exec_module(module)
@@ -126,6 +127,8 @@ _API = {
     "Layer": "strand.cable.description",
     "CableError": "strand.cable.description",
     "load_cable": "strand.cable.description",
+    "built_in_cables": "strand.cable.description",
+    "built_in_cable": "strand.cable.description",
     "cardinal": "strand.cable.description",
     "judge120": "strand.cable.description",
     "StrandGeometry": "strand.cable.geometry",
@@ -197,6 +200,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and editors (``X as X``: 
     from .cable.description import CableError as CableError
     from .cable.description import Layer as Layer
     from .cable.description import Wire as Wire
+    from .cable.description import built_in_cable as built_in_cable
+    from .cable.description import built_in_cables as built_in_cables
     from .cable.description import cardinal as cardinal
     from .cable.description import judge120 as judge120
     from .cable.description import load_cable as load_cable

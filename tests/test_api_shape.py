@@ -18,7 +18,6 @@ RECORDS_TO_CUT = {
     "strand/app/kinds/bending.py:BendingReport": 11,
     "strand/app/step_records.py:RunStep": 12,
     "strand/app/step_records.py:StepContext": 9,
-    "strand/app/run_result.py:RunResult": 23,
     "strand/app/settings.py:Case": 9,
     "strand/cable/geometry.py:ContactPairs": 9,
     "strand/cable/geometry.py:StrandGeometry": 10,

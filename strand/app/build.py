@@ -15,6 +15,7 @@ from ..model.checkpoint import CheckpointError, restore
 from ..model.model import BeamFactory
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme
+from ..setups import TestSetup
 from ..solver import ErrorControl, NewtonOptions, keep_freed_memory
 from ..solver.convergence import STALL_AFTER
 from .case import check_loads_given
@@ -156,7 +157,7 @@ def build_problem(
     *,
     kind: SetupKind | None = None,
     beam: BeamFactory = ReissnerBeam,
-) -> tuple[StrandProblem, LoadProgramme]:
+) -> tuple[StrandProblem[TestSetup], LoadProgramme]:
     """The strand of ``case`` in its test set-up, with the Newton solver, and its programme;
     one line about it on ``stream``, and before the finite-element mesh is built, a line on its
     size when it has more than ``LARGE_MESH`` elements. ``kind``: the case's set-up kind, as
@@ -215,7 +216,9 @@ def build_problem(
     return problem, programme
 
 
-def restart_from(problem: StrandProblem, programme: LoadProgramme, checkpoint, path) -> Start:
+def restart_from(
+    problem: StrandProblem[TestSetup], programme: LoadProgramme, checkpoint, path
+) -> Start:
     """Put ``checkpoint`` into ``problem`` and say where the programme continues from; a
     checkpoint of another strand or programme is refused in one line (``CheckpointError``)."""
     g = problem.geometry

@@ -23,9 +23,9 @@ from ..beam.setting import SettingError, read_value, where_text
 from ..cable.description import (
     Cable,
     CableError,
+    built_in_cable,
+    built_in_cables,
     cable_from_dict,
-    cardinal,
-    judge120,
     load_cable,
 )
 from ..cable.input_file import read_text
@@ -41,8 +41,6 @@ if TYPE_CHECKING:
 #: ``Case`` (``strand.app.settings``) and ``CaseError`` (``strand.app.errors``) are importable
 #: from here too
 __all__ = ["load_case", "case_from_dict", "check_loads_given"]
-
-BUILTIN_CABLES = {"cardinal": cardinal, "judge120": judge120}
 
 
 def _section(name: str, table, source: str):
@@ -82,13 +80,13 @@ def _cable(spec, base: Path | None, source: str) -> Cable:
         return _cable(edits.applied(cable_table(_cable(named, base, source))), base, source)
     try:
         if isinstance(spec, str):
-            if spec.lower() in BUILTIN_CABLES:
-                return BUILTIN_CABLES[spec.lower()]()
+            if spec.lower() in built_in_cables():
+                return built_in_cable(spec)
             path = (base or Path.cwd()) / spec
             if not path.exists():
                 raise CaseError(
                     f"{source}: cable = {spec!r} is neither a built-in cable nor a file ({path}); "
-                    f"built-in cables: {', '.join(BUILTIN_CABLES)}"
+                    f"built-in cables: {', '.join(built_in_cables())}"
                 )
             return load_cable(path)
         if isinstance(spec, dict):

@@ -1,8 +1,8 @@
 """The registry of set-up kinds: the kinds by their ``[load] kind`` name, in the order registered.
 
-It imports nothing but ``CaseError``, so that what sits below the kinds can read it: the settings
-take every registered kind's own settings from ``registered``; the package ``strand.app.kinds``
-registers the built-in kinds when it is imported. ``register``
+It imports nothing but ``CaseError`` and the library's ``Registry``, so that what sits below the
+kinds can read it: the settings take every registered kind's own settings from ``registered``;
+the package ``strand.app.kinds`` registers the built-in kinds when it is imported. ``register``
 (``strand.app.kinds.base``) checks a kind against the settings before it adds it here
 (``add``)."""
 
@@ -10,34 +10,33 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..beam.registry import Registry
 from .errors import CaseError
 
 __all__ = ["add", "unregister", "registered", "lookup"]
 
-_KINDS: dict[str, Any] = {}  # name → SetupKind
+_KINDS: Registry[Any] = Registry("set-up kind")  # name → SetupKind
 
 
 def add(kind: Any) -> Any:
     """Keep ``kind`` (a ``SetupKind``, checked by ``register``) under its name."""
-    _KINDS[kind.name] = kind
-    return kind
+    return _KINDS.register(kind.name, kind)
 
 
 def unregister(name: str) -> None:
     """Take the kind ``name`` out of the registry."""
-    del _KINDS[name]
+    _KINDS.unregister(name)
 
 
 def registered() -> tuple[Any, ...]:
     """The registered kinds, in the order they were registered."""
-    return tuple(_KINDS.values())
+    return _KINDS.entries()
 
 
 def lookup(name: str) -> Any:
     """The kind ``name``; a ``CaseError`` naming the known kinds if there is none."""
-    try:
-        return _KINDS[name]
-    except KeyError:
-        *others, last = _KINDS
+    if name not in _KINDS:
+        *others, last = _KINDS.names()
         choices = f"{', '.join(others)} or {last}" if others else last
-        raise CaseError(f"[load] kind = {name!r} is unknown; choose {choices}") from None
+        raise CaseError(f"[load] kind = {name!r} is unknown; choose {choices}")
+    return _KINDS.lookup(name)

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..beam.registry import Registry
 from ..model.cell_results import CellEvaluator, cell_results
 from ..model.reactions import ReactionGauge
 from .fatigue.recorders import PairHistory, WireSectionHistory
@@ -72,25 +73,24 @@ class Output:
     files: dict[str, str]
 
 
-_OUTPUTS: dict[str, Output] = {}
+_OUTPUTS: Registry[Output] = Registry("output")
 
 
 def register_output(name: str, make: Make | None, *, files: dict[str, str] | None = None) -> Output:
     """Record the output ``name`` in every run: ``make(run)`` (``Run``) gives its recorder(s)
     or None (None for ``make``: the run writes the files itself); ``files``: the files they
     write, each with what it holds (``README.txt``)."""
-    _OUTPUTS[name] = Output(name, make, dict(files or {}))
-    return _OUTPUTS[name]
+    return _OUTPUTS.register(name, Output(name, make, dict(files or {})))
 
 
 def unregister_output(name: str) -> None:
     """Take the output ``name`` out of the registry."""
-    del _OUTPUTS[name]
+    _OUTPUTS.unregister(name)
 
 
 def registered_outputs() -> tuple[Output, ...]:
     """The registered outputs, in the order they were registered."""
-    return tuple(_OUTPUTS.values())
+    return _OUTPUTS.entries()
 
 
 def _fatigue(run: Run) -> list[Recorder] | None:

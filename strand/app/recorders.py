@@ -11,13 +11,19 @@ from __future__ import annotations
 
 import csv
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from ..beam.parallel import root_open
 from ..beam.records import columns, values
 from .step_records import SlipFractions, StepBending, StepContext
+
+if TYPE_CHECKING:
+    from ..model.cell_results import CellResults
+    from ..model.layer_pressure import LayerPressure
+    from ..model.pair_results import PairResults
 
 __all__ = [
     "StepTable",
@@ -54,7 +60,7 @@ class StepTable(_CsvFile):
         from ..model.reactions import EndReactions
 
         self.gauge = gauge
-        self.reactions: dict[int, Any] = {}
+        self.reactions: dict[int, EndReactions] = {}
         measured = columns(EndReactions) if gauge is not None else []
         super().__init__(
             Path(folder) / "steps.csv",
@@ -192,18 +198,18 @@ class KeyStates:
     those of the largest abs(cycle load) reached, with the nodal unknowns there ((N, 6) in the
     geometry's point order; for summary and figures)."""
 
-    def __init__(self):
-        self.tensioned = None
-        self.tensioned_pairs = None
+    def __init__(self) -> None:
+        self.tensioned: CellResults | None = None
+        self.tensioned_pairs: PairResults | None = None
         #: where each layer's pressure goes (``layer_pressure.LayerPressure`` per layer) at the
         #: tensioned state and at the largest abs(cycle load)
-        self.tensioned_layers = None
-        self.peak_layers = None
-        self.tension_end = None
-        self.tension_end_pairs = None
-        self.first_cycle = None
-        self.peak = None
-        self.peak_w = None
+        self.tensioned_layers: list[LayerPressure] | None = None
+        self.peak_layers: list[LayerPressure] | None = None
+        self.tension_end: CellResults | None = None
+        self.tension_end_pairs: PairResults | None = None
+        self.first_cycle: CellResults | None = None
+        self.peak: CellResults | None = None
+        self.peak_w: npt.NDArray[np.float64] | None = None
         self._peak_load = 0.0
 
     def record(self, ctx: StepContext) -> None:
@@ -226,7 +232,7 @@ class KeyStates:
         pass
 
 
-def state_layer_pressure(ctx: StepContext) -> list:
+def state_layer_pressure(ctx: StepContext) -> list[LayerPressure]:
     """Where each layer's pressure goes at the step (``layer_pressure.layer_pressure``), from the
     wires' axial forces in the middle half; collective."""
     from ..model.layer_pressure import layer_pressure, layer_wire_forces

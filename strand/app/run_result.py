@@ -5,61 +5,73 @@ and figures are made from these, never from the files the run wrote. Units: SI; 
 
 from __future__ import annotations
 
-from dataclasses import KW_ONLY, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
 
 from ..model.cell_results import CellResults
 from ..model.pair_results import PairResults
 from ..model.programme import Position
 from .step_records import RunStep, SlipFractions, StepBending
 
+if TYPE_CHECKING:
+    from ..model.checkpoint import Checkpoint
+    from ..model.layer_pressure import LayerPressure
+    from ..model.reactions import EndReactions
+    from .fatigue.findings import FatigueReport
+
 __all__ = ["RunResult", "Start"]
 
 
-@dataclass
+@dataclass(frozen=True, kw_only=True)
 class RunResult:
-    """What a run produced: its step records, cell results at key states, the folder, the outcome."""
+    """What a run produced: its step records, cell results at key states, the folder, the outcome.
+    Made once, when the run has ended (``runner.run_programme_with_outputs``); the fatigue
+    report, made after the summary, comes with a copy (``dataclasses.replace``)."""
 
     folder: Path
-    steps: list[RunStep] = field(default_factory=list)
+    steps: tuple[RunStep, ...] = ()
     #: the set-up's bending measures at every cycle step (``moment_curvature.csv``)
-    bending: list[StepBending] = field(default_factory=list)
+    bending: tuple[StepBending, ...] = ()
     #: the slipping share of each interface's pairs in the measuring zone (``slip.csv``)
-    slip: list[SlipFractions] = field(default_factory=list)
-    #: the strand's reactions at both ends (``reactions.EndReactions``) by step number
-    reactions: dict[int, Any] = field(default_factory=dict)
+    slip: tuple[SlipFractions, ...] = ()
+    #: the strand's reactions at both ends by step number
+    reactions: dict[int, EndReactions] = field(default_factory=dict)
     tensioned: CellResults | None = None  # after tension, before the cycle
     tensioned_pairs: PairResults | None = None  # the contact pairs there
     #: at the tension's last step (``tensioned`` unless a load was then applied and held)
     tension_end: CellResults | None = None
     tension_end_pairs: PairResults | None = None  # the contact pairs there
     first_cycle: CellResults | None = None  # at the first step of the cycle
-    #: the fatigue report of the run (``fatigue.findings.FatigueReport``; None without one)
-    fatigue: Any = None
-    #: what the set-up kind's analytical reference predicts for the run (``SetupKind.reference``)
-    reference: Any = None
+    #: the fatigue report of the run (None without one, and on ranks other than 0)
+    fatigue: FatigueReport | None = None
+    #: what the set-up kind's analytical reference predicts for the run (``SetupKind.reference``:
+    #: a record of the kind's own, which only that kind reads; None without one)
+    reference: object = None
     peak: CellResults | None = None  # at the largest abs(cycle load) reached
-    peak_w: Any = None  # nodal unknowns at that state
+    #: nodal unknowns there, (N, 6) in the geometry's point order
+    peak_w: npt.NDArray[np.float64] | None = None
     failure: str = ""  # why the run stopped early ("" if it did not)
     interrupted: bool = False  # stopped by the user (Ctrl-C)
-    warnings: list[str] = field(default_factory=list)  # e.g. beyond small sliding
+    warnings: tuple[str, ...] = ()  # e.g. beyond small sliding
     seconds: float = 0.0
     setup_seconds: float = 0.0
-    #: solver wall times (s): residual/jacobian callbacks, pair terms, insertion, whole solves;
-    #: and "output", all recorders together
-    timings: dict = field(default_factory=dict)
+    #: solver wall times (s) and counts: residual/jacobian callbacks, pair terms, insertion,
+    #: whole solves; and "output", all recorders together
+    timings: dict[str, float] = field(default_factory=dict)
     #: wall time (s) of each recorder over the run, by class name (the first to ask for the
     #: step's cell results, the axial force table, is charged with evaluating them)
-    output_timings: dict = field(default_factory=dict)
+    output_timings: dict[str, float] = field(default_factory=dict)
     cycle_parameter: str = ""
     #: the state kept in memory at the steps ``run_programme_with_outputs(keep=)`` chose
-    kept: Any = None
-    _: KW_ONLY
-    #: where each layer's pressure goes (``layer_pressure.LayerPressure`` per helical layer)
-    #: at the tensioned state and at the largest abs(cycle load)
-    tensioned_layers: list | None = None
-    peak_layers: list | None = None
+    kept: Checkpoint | None = None
+    #: where each layer's pressure goes (``LayerPressure`` per helical layer) at the tensioned
+    #: state and at the largest abs(cycle load)
+    tensioned_layers: tuple[LayerPressure, ...] | None = None
+    peak_layers: tuple[LayerPressure, ...] | None = None
 
     @property
     def iterations(self) -> int:

@@ -12,12 +12,15 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..beam.parallel import is_root
 from ..model.cell_results import CellEvaluator, cell_results
 from ..model.problem import StrandProblem
 from ..model.programme import LoadProgramme, Position, Stage, run_programme
+from ..setups import TestSetup
 from ..solver import Interrupt, LoadStepFailure, RunInterrupted, StepRecord
 from .build import step_control
 from .checks import tension_warning
@@ -29,6 +32,10 @@ from .run_result import RunResult, Start
 from .settings import Case
 from .step_records import Recorder, RunStep, StepContext
 from .summary import summarize, wire_stress_line, yield_warnings
+
+if TYPE_CHECKING:
+    from ..model.checkpoint import Checkpoint
+    from .fatigue.findings import FatigueReport
 
 __all__ = ["run_programme_with_outputs", "Recording", "Progress", "run_fatigue_report"]
 
@@ -68,7 +75,7 @@ class Progress:
 
 def case_recorders(
     case: Case,
-    problem: StrandProblem,
+    problem: StrandProblem[TestSetup],
     folder: Path,
     parameter: str,
     key_states: KeyStates,
@@ -104,11 +111,14 @@ def case_recorders(
 
 class Recording:
     """The recorders and progress lines of one run: ``on_step`` after every converged step
-    (``run_programme``'s callback) records it into ``result`` and every recorder.
+    (``run_programme``'s callback) records it into ``steps`` and every recorder; ``result``
+    makes the run's ``RunResult`` of them once the run has ended.
 
     Args:
         kind: the case's set-up kind, as the run resolved it (``kinds.kind_of``).
-        keep: the steps after which the state is kept in memory as ``result.kept``.
+        folder: where the recorders write.
+        warnings: the run's warnings so far; the recorders add theirs to it.
+        keep: the steps after which the state is kept in memory as ``kept``.
         fresh: the run starts from the unloaded strand (not from a ``Start``).
     """
 
@@ -116,27 +126,33 @@ class Recording:
         self,
         case: Case,
         kind: SetupKind,
-        problem: StrandProblem,
+        problem: StrandProblem[TestSetup],
         programme: LoadProgramme,
-        result: RunResult,
+        folder: Path,
         stream,
         *,
+        warnings: list[str],
         keep: Callable[[RunStep], bool] | None = None,
         fresh: bool = True,
     ):
-        self.problem, self.programme, self.result, self.keep = problem, programme, result, keep
+        self.problem, self.programme, self.folder, self.keep = problem, programme, folder, keep
         self.case, self.kind, self.stream = case, kind, stream
+        self.steps: list[RunStep] = []
+        self.warnings = warnings
+        #: wall time (s) of each recorder over the run, by class name
+        self.output_timings: dict[str, float] = {}
+        self.kept: Checkpoint | None = None  # the state at the last step ``keep`` chose
         self.evaluator = CellEvaluator(problem.model)
         self.key_states = KeyStates()
         self.outputs = case_recorders(
             case,
             problem,
-            result.folder,
+            folder,
             programme.cycle_parameter,
             self.key_states,
             self.evaluator,
             stream,
-            warnings=result.warnings,
+            warnings=warnings,
             fresh=fresh,
         )
         self.recorders = [r for made in self.outputs.values() for r in made]
@@ -150,8 +166,8 @@ class Recording:
     def record(self, step: RunStep, position: Position) -> StepContext:
         """Hand ``step`` to every recorder (timed each), keep its state if asked."""
         t_out = time.perf_counter()
-        result, problem = self.result, self.problem
-        result.steps.append(step)
+        problem = self.problem
+        self.steps.append(step)
         ctx = StepContext(
             step,
             problem,
@@ -163,11 +179,11 @@ class Recording:
             t_r = time.perf_counter()
             r.record(ctx)
             name = type(r).__name__
-            result.output_timings[name] = (
-                result.output_timings.get(name, 0.0) + time.perf_counter() - t_r
+            self.output_timings[name] = (
+                self.output_timings.get(name, 0.0) + time.perf_counter() - t_r
             )
         if self.keep is not None and self.keep(step):
-            result.kept = ctx.checkpoint
+            self.kept = ctx.checkpoint
         self.seconds += time.perf_counter() - t_out
         return ctx
 
@@ -175,7 +191,7 @@ class Recording:
         """The record of a converged step of ``stage`` (``run_programme``'s callback)."""
         setup = self.problem.setup
         value = setup.get(stage.parameter)
-        steps = self.result.steps
+        steps = self.steps
         number = steps[-1].number + 1 if steps else 1  # after any start row
         step = RunStep(
             number,
@@ -206,7 +222,7 @@ class Recording:
         cable, length = self.case.cable, self.problem.geometry.length
         print(wire_stress_line(cable, ctx.cells, length).strip(), file=self.stream, flush=True)
         for warning in yield_warnings(cable, ctx.cells):
-            self.result.warnings.append(warning)
+            self.warnings.append(warning)
             print(f"strand: warning: {warning}", file=self.stream, flush=True)
 
     def start_from(self, start: Start) -> None:
@@ -223,7 +239,7 @@ class Recording:
 
     def seconds_of(self, *outputs: str) -> float:
         """Wall time (s) of the recorders of the registered ``outputs`` over the run."""
-        timings = self.result.output_timings
+        timings = self.output_timings
         return sum(
             timings.get(type(r).__name__, 0.0)
             for name in outputs
@@ -234,19 +250,60 @@ class Recording:
         for r in self.recorders:
             r.close()
 
+    def result(self, outcome: Outcome, setup_seconds: float) -> RunResult:
+        """The run's record of what has been recorded, with its ``outcome``; no reference,
+        fatigue report or times but ``setup_seconds`` yet."""
+        keys = self.key_states
+        return RunResult(
+            folder=self.folder,
+            steps=tuple(self.steps),
+            bending=tuple(self.bending.rows),
+            slip=tuple(self.slip.rows),
+            reactions=self.steps_table.reactions,
+            tensioned=keys.tensioned,
+            tensioned_pairs=keys.tensioned_pairs,
+            tension_end=keys.tension_end,
+            tension_end_pairs=keys.tension_end_pairs,
+            first_cycle=keys.first_cycle,
+            peak=keys.peak,
+            peak_w=keys.peak_w,
+            failure=outcome.failure,
+            interrupted=outcome.interrupted,
+            warnings=tuple(self.warnings),
+            setup_seconds=setup_seconds,
+            output_timings=self.output_timings,
+            cycle_parameter=self.programme.cycle_parameter,
+            kept=self.kept,
+            tensioned_layers=_tuple_or_none(keys.tensioned_layers),
+            peak_layers=_tuple_or_none(keys.peak_layers),
+        )
 
-def _warn_of_tension(case: Case, result: RunResult, stream) -> None:
+
+def _tuple_or_none[T](items: list[T] | None) -> tuple[T, ...] | None:
+    return None if items is None else tuple(items)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """How a load programme ended: ``failure``, why it stopped early ("" if it did not), and
+    whether the user stopped it (Ctrl-C)."""
+
+    failure: str = ""
+    interrupted: bool = False
+
+
+def _warn_of_tension(case: Case, warnings: list[str], stream) -> None:
     """A tension far from the strand's breaking strength (``checks.tension_warning``), printed
-    and kept for the summary."""
+    and kept (in ``warnings``) for the summary."""
     warning = tension_warning(case)
     if warning:
-        result.warnings.append(warning)
+        warnings.append(warning)
         print(f"strand: warning: {warning}", file=stream, flush=True)
 
 
 def run_programme_with_outputs(
     case: Case,
-    problem: StrandProblem,
+    problem: StrandProblem[TestSetup],
     programme: LoadProgramme,
     folder: Path,
     stream,
@@ -263,43 +320,48 @@ def run_programme_with_outputs(
     kind, as the run resolved it (None: resolved here, for a caller that starts from the case)."""
     t_start = time.perf_counter() if t_start is None else t_start
     kind = kind_of(case) if kind is None else kind
-    result = RunResult(folder, cycle_parameter=programme.cycle_parameter)
+    warnings: list[str] = []
     if start is None:  # a run from the unloaded strand: warned once, before the first step
-        _warn_of_tension(case, result, stream)
+        _warn_of_tension(case, warnings, stream)
     recording = Recording(
-        case, kind, problem, programme, result, stream, keep=keep, fresh=start is None
+        case,
+        kind,
+        problem,
+        programme,
+        folder,
+        stream,
+        warnings=warnings,
+        keep=keep,
+        fresh=start is None,
     )
-    result.setup_seconds = time.perf_counter() - t_start
-    _take_programme(problem, programme, recording, start, stream)
-    keys = recording.key_states
-    result.tensioned, result.peak, result.peak_w = keys.tensioned, keys.peak, keys.peak_w
-    result.tensioned_pairs, result.first_cycle = keys.tensioned_pairs, keys.first_cycle
-    result.tension_end, result.tension_end_pairs = keys.tension_end, keys.tension_end_pairs
-    result.tensioned_layers, result.peak_layers = keys.tensioned_layers, keys.peak_layers
-    result.bending, result.slip = recording.bending.rows, recording.slip.rows
-    result.reactions = recording.steps_table.reactions
-    result.reference = kind.reference(case, result)
-    result.seconds = time.perf_counter() - t_start
-    result.timings = dict(problem.solver.timings, output=recording.seconds)
+    setup_seconds = time.perf_counter() - t_start
+    outcome = _take_programme(problem, programme, recording, start, stream)
+    recorded = recording.result(outcome, setup_seconds)
+    result = replace(  # the reference is the kind's reading of the recorded run
+        recorded,
+        reference=kind.reference(case, recorded),
+        seconds=time.perf_counter() - t_start,
+        timings=dict(problem.solver.timings, output=recording.seconds),
+    )
     summary = summarize(case, result, problem, kind.summary_lines(case, result))
     print(summary, file=stream, flush=True)
     if is_root():  # the summary, report and figures read what every rank has (or rank 0 wrote)
         (folder / "summary.txt").write_text(summary)
-        _report_and_figures(case, result, problem, recording, stream)
+        result = _report_and_figures(case, result, problem, recording, stream)
         write_folder_readme(folder)
     return result
 
 
 def _take_programme(
-    problem: StrandProblem,
+    problem: StrandProblem[TestSetup],
     programme: LoadProgramme,
     recording: Recording,
     start: Start | None,
     stream,
-) -> None:
+) -> Outcome:
     """Run the programme with ``recording``'s callback; a stop (Ctrl-C) or a failed step ends
-    it at the last converged step, said on ``stream`` and in the result; the recorders close."""
-    result = recording.result
+    it at the last converged step, said on ``stream`` and in the outcome; the recorders close."""
+    outcome = Outcome()
     try:
         if start is not None:
             recording.start_from(start)
@@ -313,30 +375,32 @@ def _take_programme(
                 **step_control(recording.case),
             )
     except RunInterrupted as stop:
-        result.failure, result.interrupted = f"{stop} {_written(result)}", True
-        print(f"strand: stopped: {result.failure}", file=stream, flush=True)
+        outcome = Outcome(f"{stop} {_written(recording.folder)}", interrupted=True)
+        print(f"strand: stopped: {outcome.failure}", file=stream, flush=True)
     except LoadStepFailure as failure:
-        result.failure = f"{failure} {_written(result)}"
-        print(f"strand: step failed: {result.failure}", file=stream, flush=True)
+        outcome = Outcome(f"{failure} {_written(recording.folder)}")
+        print(f"strand: step failed: {outcome.failure}", file=stream, flush=True)
     finally:
         problem.solver.interrupt = None
         recording.close()
+    return outcome
 
 
-def _written(result: RunResult) -> str:
+def _written(folder: Path) -> str:
     """What a run that stopped early has written: its steps, in its folder."""
-    return f"The steps up to the last converged one are written in {result.folder}."
+    return f"The steps up to the last converged one are written in {folder}."
 
 
 def _report_and_figures(
-    case: Case, result: RunResult, problem: StrandProblem, recording: Recording, stream
-) -> None:
-    """The fatigue report (with a cycle and the histories) and the figures, on rank 0."""
+    case: Case, result: RunResult, problem: StrandProblem[TestSetup], recording: Recording, stream
+) -> RunResult:
+    """The fatigue report (with a cycle and the histories) and the figures, on rank 0;
+    ``result`` with the report."""
     report = None
     if case.fatigue.outputs and len(result.cycle_steps):
         seconds = recording.seconds_of("fatigue_histories")
         report = run_fatigue_report(case, result, seconds, stream, clamp=recording.kind.clamp)
-        result.fatigue = report
+        result = replace(result, fatigue=report)
     if case.output.plots:
         from .fatigue.figures import fatigue_figures
         from .plots import results_figures
@@ -346,9 +410,12 @@ def _report_and_figures(
             paths += fatigue_figures(result.folder, report)
         for path in paths:
             print(f"figure: {path}", file=stream)
+    return result
 
 
-def run_fatigue_report(case: Case, result: RunResult, recording: float, stream, *, clamp: bool):
+def run_fatigue_report(
+    case: Case, result: RunResult, recording: float, stream, *, clamp: bool
+) -> FatigueReport | None:
     """The fatigue report of the run's histories (``strand.app.fatigue.report``): ``fatigue.txt``
     and the CSV files, with the cost of the histories (``recording`` s) and the report beside the
     run's; ``clamp``: the set-up clamps the strand at z = 0 (``SetupKind.clamp``)."""

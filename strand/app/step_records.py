@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from ..model.pair_results import PairResults
     from ..model.problem import StrandProblem
     from ..model.programme import Position
+    from ..setups import TestSetup
 
 __all__ = ["RunStep", "StepBending", "SlipFractions", "StepContext", "Recorder"]
 
@@ -79,7 +80,7 @@ class StepContext:
     """
 
     step: RunStep
-    problem: StrandProblem
+    problem: StrandProblem[TestSetup]
     cycle: bool
     _cells: CellResults | None = field(default=None, repr=False)
     _evaluate: Callable[[], CellResults] | None = field(default=None, repr=False)

@@ -87,6 +87,7 @@ def run_sweep(
         if tensioned.failure:
             return [tensioned]
         state, last = tensioned.kept, tensioned.steps[-1]
+        assert state is not None  # kept at every step, and the tension's steps converged
         for amplitude, name in names.items():
             member = kind.with_amplitude(case, amplitude)
             _, member_programme = setup_and_programme(member, kind)

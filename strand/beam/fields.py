@@ -50,7 +50,7 @@ class FieldWriter:
         self,
         path: str | Path,
         beam: ReissnerBeam,
-        cell_data=(),
+        cell_data: Sequence[fem.Function] = (),
         vtx: bool = True,
         loads: Sequence[str] = (),
     ):
@@ -155,6 +155,8 @@ def meshio_layout(path: str | Path, names: Sequence[str] = ()) -> None:
     ET.register_namespace("xi", _XI)
     tree = ET.parse(path)
     domain = tree.getroot().find("Domain")
+    if domain is None:
+        raise ValueError(f"{path}: not an XDMF file (no Domain element)")
     grids = list(domain)
     for topology in domain.iter("Topology"):
         if topology.get("TopologyType") == "PolyLine":

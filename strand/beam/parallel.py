@@ -48,8 +48,8 @@ def on_root[T](task: Callable[[], T], comm: MPI.Comm = MPI.COMM_WORLD) -> T:
             outcome = (False, e)
     ok, value = comm.bcast(outcome, root=0)
     if not ok:
-        raise value  # type: ignore[misc]
-    return value  # type: ignore[return-value]
+        raise value
+    return value
 
 
 def serial_only(what: str, comm: MPI.Comm = MPI.COMM_WORLD) -> None:
@@ -78,5 +78,5 @@ def abort_on_error(comm: MPI.Comm = MPI.COMM_WORLD) -> None:
         time.sleep(0.5)
         comm.Abort(1)
 
-    hook.aborts = True
+    hook.aborts = True  # type: ignore[attr-defined]  # marks strand's hook
     sys.excepthook = hook

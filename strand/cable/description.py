@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -27,6 +28,8 @@ __all__ = [
     "Layer",
     "Cable",
     "load_cable",
+    "built_in_cables",
+    "built_in_cable",
     "cardinal",
     "judge120",
     "CORE_KEYS",
@@ -190,7 +193,7 @@ def _wire(d: dict, where: str) -> Wire:
     )
 
 
-def _check_keys(d, allowed: set[str], where: str) -> None:
+def _check_keys(d: object, allowed: AbstractSet[str], where: str) -> None:
     if not isinstance(d, dict):
         raise CableError(f"{where}: expected a table, got {type(d).__name__}")
     unknown = sorted(set(d) - allowed)
@@ -257,6 +260,22 @@ def load_cable(path: str | Path) -> Cable:
         return cable_from_dict(data)
     except CableError as e:
         raise CableError(f"{path}: {e}") from None
+
+
+def built_in_cables() -> tuple[str, ...]:
+    """The names of strand's built-in cables, sorted: one per file ``<name>.toml`` of
+    ``strand/cable/data``, so that a new file there is a new built-in cable."""
+    files = resources.files("strand.cable.data").iterdir()
+    return tuple(sorted(f.name.removesuffix(".toml") for f in files if f.name.endswith(".toml")))
+
+
+def built_in_cable(name: str) -> Cable:
+    """The built-in cable ``name`` (any case; ``built_in_cables``); ``CableError`` naming the
+    built-in ones for another name."""
+    names = built_in_cables()
+    if name.lower() not in names:
+        raise CableError(f"no built-in cable {name!r}; the built-in cables: {', '.join(names)}")
+    return _built_in(f"{name.lower()}.toml")
 
 
 def _built_in(file: str) -> Cable:

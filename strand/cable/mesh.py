@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
 import basix.ufl
 import dolfinx
@@ -29,7 +32,10 @@ __all__ = [
 
 
 def polyline_mesh(
-    comm: MPI.Comm, points: npt.ArrayLike, cells: npt.ArrayLike, partitioner=None
+    comm: MPI.Comm,
+    points: npt.ArrayLike,
+    cells: npt.ArrayLike,
+    partitioner: Callable[..., Any] | None = None,
 ) -> dolfinx.mesh.Mesh:
     """A mesh of straight two-node cells: ``points`` (N, 3) in m, ``cells`` (E, 2) node indices.
 
@@ -41,12 +47,16 @@ def polyline_mesh(
     if comm.rank != 0:
         x, c = np.zeros((0, 3)), np.zeros((0, 2), dtype=np.int64)
     element = basix.ufl.element("Lagrange", "interval", 1, shape=(3,))
-    kwargs = {"partitioner": partitioner} if partitioner is not None else {}
+    kwargs: dict[str, Any] = {"partitioner": partitioner} if partitioner is not None else {}
     return dolfinx.mesh.create_mesh(comm, cells=c, x=x, e=element, **kwargs)
 
 
 def straight_beam_mesh(
-    comm: MPI.Comm, length: float, n_cells: int, direction=(1.0, 0.0, 0.0), origin=(0.0, 0.0, 0.0)
+    comm: MPI.Comm,
+    length: float,
+    n_cells: int,
+    direction: npt.ArrayLike = (1.0, 0.0, 0.0),
+    origin: npt.ArrayLike = (0.0, 0.0, 0.0),
 ) -> dolfinx.mesh.Mesh:
     """A straight beam of ``length`` (m) split into ``n_cells`` equal cells."""
     s = np.linspace(0.0, length, n_cells + 1)
@@ -102,7 +112,11 @@ class CableMesh:
         return np.column_stack([i2b[p.a], i2b[p.b]]).astype(np.int32)
 
 
-def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD, stencils=()) -> CableMesh:
+def cable_mesh(
+    geometry: StrandGeometry,
+    comm: MPI.Comm = MPI.COMM_WORLD,
+    stencils: Sequence[npt.ArrayLike] = (),
+) -> CableMesh:
     """Build the dolfinx mesh of a ``StrandGeometry`` (rank 0 holds the input arrays). On several
     ranks it is cut in axial slabs, ghosted so that each row of ``stencils`` (input node indices,
     anchor first: contact pairs, end sections) is whole on the rank owning its anchor
@@ -120,7 +134,7 @@ def cable_mesh(geometry: StrandGeometry, comm: MPI.Comm = MPI.COMM_WORLD, stenci
     return CableMesh(geometry, mesh, wire, layer)
 
 
-def write_centrelines(geometry: StrandGeometry, path) -> None:
+def write_centrelines(geometry: StrandGeometry, path: str | Path) -> None:
     """Export the wire centrelines (polylines with wire and layer cell data) with meshio, for
     other tools; the format follows the file suffix (.vtu, .msh, .xdmf, ...)."""
     import meshio
@@ -132,7 +146,7 @@ def write_centrelines(geometry: StrandGeometry, path) -> None:
     ).write(str(path))
 
 
-def geometry_to_gmsh(geometry: StrandGeometry, model=None):
+def geometry_to_gmsh(geometry: StrandGeometry, model: Any = None) -> Any:
     """Put the strand's nodes and cells into a gmsh model as one curve per wire, meshed exactly
     as ``geometry`` (gmsh node tag = input point index + 1), with a physical group per wire
     (tag = wire id + 1, name "wire <w> layer <l>"). Returns the model."""
@@ -153,7 +167,9 @@ def geometry_to_gmsh(geometry: StrandGeometry, model=None):
     return model
 
 
-def mesh_from_gmsh(model, comm: MPI.Comm = MPI.COMM_WORLD, rank: int = 0):
+def mesh_from_gmsh(
+    model: Any, comm: MPI.Comm = MPI.COMM_WORLD, rank: int = 0
+) -> tuple[dolfinx.mesh.Mesh, dolfinx.mesh.MeshTags]:
     """A user's 1D gmsh model (one physical group per wire) as a dolfinx mesh.
 
     Returns (mesh, wire_tags) with wire id = physical tag − 1. The mesh's input point index is the

@@ -6,13 +6,20 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
+
+if TYPE_CHECKING:
+    import pyvista
+
+    from .geometry import StrandGeometry
 
 __all__ = ["offscreen_plotter", "tubes", "save", "strand_picture"]
 
 
-def offscreen_plotter(**kwargs):
+def offscreen_plotter(**kwargs: Any):  # -> pyvista.Plotter, whose stubs mypy misreads
     """A pyvista Plotter that renders without a display (EGL here, no X server needed)."""
     os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista
@@ -22,8 +29,14 @@ def offscreen_plotter(**kwargs):
 
 
 def tubes(
-    V_or_mesh, displacement=None, scalars=None, name="value", radius=1e-3, n_sides=16, cells=None
-):
+    V_or_mesh,  # a FunctionSpace or a Mesh (vtk_mesh takes both; its stubs only the mesh)
+    displacement: npt.ArrayLike | None = None,
+    scalars: npt.NDArray[Any] | None = None,
+    name: str = "value",
+    radius: float = 1e-3,
+    n_sides: int = 16,
+    cells: npt.ArrayLike | None = None,
+) -> pyvista.PolyData | None:
     """Tubes of ``radius`` (m) around the (displaced) centrelines of a 1D mesh. Collective: on
     several ranks each rank gives its own part and rank 0 gets the tubes of the whole mesh, the
     other ranks None (draw on rank 0).
@@ -72,7 +85,9 @@ def save(plotter, path: str | Path) -> Path:
 LAYER_COLOURS = ["#4d4d4d", "#8c6d31", "#3182bd", "#31a354", "#e6550d", "#756bb1", "#d6616b"]
 
 
-def strand_picture(geometry, path, step: float = 0.03, section_z: float | None = None) -> Path:
+def strand_picture(
+    geometry: StrandGeometry, path: str | Path, step: float = 0.03, section_z: float | None = None
+) -> Path:
     """A PNG with the strand as tubes coloured by layer (cut away like a staircase: layer i is
     drawn over (n_layers − i) × ``step`` m) and a cross-section at ``section_z`` with the wires and
     the contact points within ±3 mm of it."""

@@ -8,8 +8,13 @@ Every node of beam b is measured against beam a's centreline (``closest_on_segme
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from dolfinx import fem
 
 from .errors import ContactError
 from .nodes import BeamNodes, _chunks, chains, input_arrays
@@ -31,15 +36,15 @@ def closest_on_segments(p: Array, s0: Array, s1: Array) -> tuple[Array, Array]:
 
 
 def candidate_pairs(
-    V,
-    beam_a,
-    beam_b,
+    V: fem.FunctionSpace,
+    beam_a: npt.ArrayLike,
+    beam_b: npt.ArrayLike,
     radius_a: float,
     radius_b: float,
     reach: float,
     *,
     line: bool = False,
-    initial_gap=None,
+    initial_gap: npt.ArrayLike | None = None,
 ) -> NodePairs:
     """The pairs between two beams whose surfaces are within ``reach`` (m) of each other.
     Collective: on several ranks, each rank gets the pairs whose node a it owns.
@@ -95,10 +100,10 @@ def candidate_pairs(
 
 
 def candidate_stencils(
-    points,
-    cells,
-    beam_a,
-    beam_b,
+    points: npt.ArrayLike,
+    cells: npt.ArrayLike,
+    beam_a: npt.ArrayLike,
+    beam_b: npt.ArrayLike,
     radius_a: float,
     radius_b: float,
     reach: float,

@@ -124,7 +124,7 @@ class FrictionLaw(ABC):
         """K_T (P,) in N/m from the normal forces at the start of the step."""
 
     def choose(
-        self, slip: Array, t_old: Array, n_old: Array, p_old: Array, history
+        self, slip: Array, t_old: Array, n_old: Array, p_old: Array, history: dict[str, Array]
     ) -> dict[str, Array]:
         """The step's ``CHOICES`` (each (P,)) for the slip Δg_T (P, 3) since the last converged
         step (traction t_old, normal n_old, normal force p_old, the law's ``history``); none
@@ -138,13 +138,13 @@ class FrictionLaw(ABC):
 
     def terms(
         self,
-        S,
-        dq,
-        p,
-        dp_dq,
-        p_old,
-        t_old,
-        n_old,
+        S: Array,
+        dq: Array,
+        p: Array,
+        dp_dq: Array | None,
+        p_old: Array,
+        t_old: Array,
+        n_old: Array,
         *,
         normal: NormalLaw,
         jacobian: bool,
@@ -165,6 +165,7 @@ class FrictionLaw(ABC):
         f = np.einsum("pij,pi->pj", S, ret.traction)
         K = None
         if jacobian:
+            assert dp_dq is not None  # given with the jacobian
             St = S.transpose(0, 2, 1)
             K = np.einsum("pj,pk->pjk", np.einsum("pij,pi->pj", S, ret.d_pressure), dp_dq)
             K[:, :, : S.shape[2]] += St @ ret.d_slip @ S
@@ -182,7 +183,7 @@ class ElasticSlip(FrictionLaw):
 
     g_lim: float = 5e-6
 
-    def stiffness(self, p_start, normal):
+    def stiffness(self, p_start: Array, normal: NormalLaw) -> Array:
         return tangential_stiffness(np.asarray(self.mu, float), p_start, self.g_lim)
 
 
@@ -193,5 +194,5 @@ class Mindlin(FrictionLaw):
 
     ratio: Array | float
 
-    def stiffness(self, p_start, normal):
+    def stiffness(self, p_start: Array, normal: NormalLaw) -> Array:
         return self.ratio * normal.stiffness(p_start) * (p_start > 0)

@@ -125,16 +125,16 @@ def line_contact(r1, r2, E1, nu1, E2, nu2, line_load) -> tuple[Array, Array]:
 
 def hertz_mindlin(
     line: bool,
-    radius_a,
-    radius_b,
-    crossing_angle,
-    tributary,
+    radius_a: npt.ArrayLike,
+    radius_b: npt.ArrayLike,
+    crossing_angle: npt.ArrayLike,
+    tributary: npt.ArrayLike,
     *,
-    E_a,
-    nu_a,
-    E_b,
-    nu_b,
-    mu=None,
+    E_a: npt.ArrayLike,
+    nu_a: npt.ArrayLike,
+    E_b: npt.ArrayLike,
+    nu_b: npt.ArrayLike,
+    mu: npt.ArrayLike | None = None,
     microslip: bool = False,
 ) -> tuple[NormalLaw, FrictionLaw | None]:
     """The laws of elastic wires in contact, from their radii (m) and moduli (Pa) alone.

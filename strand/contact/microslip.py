@@ -197,7 +197,9 @@ class MindlinDeresiewicz(Mindlin):
     def initial_history(self, n_pairs: int) -> dict[str, Array]:
         return {"anchor": np.zeros((n_pairs, 3)), "branch": np.ones(n_pairs)}
 
-    def choose(self, slip, t_old, n_old, p_old, history):
+    def choose(
+        self, slip: Array, t_old: Array, n_old: Array, p_old: Array, history: dict[str, Array]
+    ):  # the base's dict of float arrays: its flag is a bool array
         """A pair reverses where its slip goes against its branch, Δg_T·(t_old − t_r) < 0."""
         mu = np.broadcast_to(np.asarray(self.mu, float), p_old.shape)
         return {"reversed": reversal(slip, t_old, n_old, history["anchor"], mu * p_old)}

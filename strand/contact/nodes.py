@@ -10,10 +10,14 @@ tangents (``strand.contact.pairs``). Units: m.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    from dolfinx import fem
 
 __all__ = ["BeamNodes", "beam_nodes", "chains", "dof_values", "input_arrays", "locate_nodes"]
 
@@ -30,14 +34,14 @@ class BeamNodes:
     neighbours: Blocks
     cells: Blocks  # (E, 2) the cells as pairs of nodes
 
-    def tangents(self, nodes) -> Array:
+    def tangents(self, nodes: npt.NDArray[np.integer]) -> Array:
         """Unit chords x₊ − x₋ between the neighbours of ``nodes`` (P, 3)."""
         nb = self.neighbours[nodes]
         c = self.positions[nb[:, 1]] - self.positions[nb[:, 0]]
         return c / np.linalg.norm(c, axis=1)[:, None]
 
 
-def beam_nodes(V) -> BeamNodes:
+def beam_nodes(V: fem.FunctionSpace) -> BeamNodes:
     """Positions and neighbours of every node of the beam space ``V`` (blocked P1 on a 1D mesh).
 
     Raises ``ValueError`` at a node shared by more than two cells (beams meet there: pair such
@@ -47,7 +51,7 @@ def beam_nodes(V) -> BeamNodes:
     return chains(x, np.asarray(V.dofmap.list, dtype=np.int32).reshape(-1, 2))
 
 
-def chains(x, cells) -> BeamNodes:
+def chains(x: npt.ArrayLike, cells: npt.ArrayLike) -> BeamNodes:
     """``BeamNodes`` of nodes at ``x`` (n, 3) in m joined by two-node ``cells`` (E, 2), e.g. the
     input arrays of a mesh (``input_arrays``). Raises as ``beam_nodes``."""
     x = np.asarray(x, dtype=float).reshape(-1, 3)
@@ -120,7 +124,7 @@ def _refuse_far(p: Array, closest: Array, tol: float, remedy: str) -> None:
         )
 
 
-def locate_nodes(V, points, tol: float | None = None) -> Blocks:
+def locate_nodes(V: fem.FunctionSpace, points: npt.ArrayLike, tol: float | None = None) -> Blocks:
     """The nodes of ``V`` at ``points`` (m, (P, 3) or (3,)) that this rank holds: local dof
     blocks, owned and ghost, as ``fem.locate_dofs_geometrical`` returns them. Collective.
 
@@ -141,7 +145,7 @@ def locate_nodes(V, points, tol: float | None = None) -> Blocks:
     return nearest[distance <= tol].astype(np.int32)
 
 
-def dof_values(u, points, tol: float | None = None) -> Array:
+def dof_values(u: fem.Function, points: npt.ArrayLike, tol: float | None = None) -> Array:
     """The values of the function ``u`` at the dofs at ``points`` (m, (P, 3) or (3,)), as a
     (P, bs) array in the order of ``points``, on every rank. Collective.
 

@@ -34,9 +34,13 @@ Units: m.
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from dolfinx import fem
 
 from .element import ContactGroup
 from .friction_laws import FrictionLaw
@@ -114,7 +118,7 @@ class NodePairs:
         cols = [ROLES.index(r) for r in stencil_nodes(normal, self.line)]
         return self.nodes[:, cols], self.positions[:, cols]
 
-    def select(self, mask) -> NodePairs:
+    def select(self, mask: npt.ArrayLike) -> NodePairs:
         """The pairs ``mask`` (boolean or indices) of these."""
         return NodePairs(
             **{
@@ -138,15 +142,15 @@ def _per_pair(value, n: int, name: str) -> Array:
 
 
 def node_pairs(
-    V,
-    a,
-    b,
-    radius_a,
-    radius_b,
+    V: fem.FunctionSpace,
+    a: npt.ArrayLike,
+    b: npt.ArrayLike,
+    radius_a: npt.ArrayLike,
+    radius_b: npt.ArrayLike,
     *,
     line: bool = False,
-    initial_gap=None,
-    tributary=None,
+    initial_gap: npt.ArrayLike | None = None,
+    tributary: npt.ArrayLike | None = None,
     nodes: BeamNodes | None = None,
 ) -> NodePairs:
     """Pairs joining the nodes ``a`` of one beam and ``b`` of another (local dof blocks of ``V``).
@@ -270,7 +274,14 @@ def contact_terms(
 
 
 def hertz_laws(
-    pairs: NodePairs, E_a, nu_a, E_b, nu_b, mu=None, *, microslip: bool = False
+    pairs: NodePairs,
+    E_a: npt.ArrayLike,
+    nu_a: npt.ArrayLike,
+    E_b: npt.ArrayLike,
+    nu_b: npt.ArrayLike,
+    mu: npt.ArrayLike | None = None,
+    *,
+    microslip: bool = False,
 ) -> tuple[NormalLaw, FrictionLaw | None]:
     """Contact laws of elastic wires from their radii and moduli (Pa) alone: Hertz crossed
     cylinders at the pairs' crossing angle, or Hertz line contact over the tributary length, and

@@ -19,10 +19,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import fields, is_dataclass, replace
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from dolfinx import fem
 
 from .errors import ContactError
 from .friction_laws import FrictionLaw
@@ -245,7 +248,7 @@ def _check_order(chains: NodeChains, cells) -> None:
 
 
 def sliding_terms(
-    V,
+    V: fem.FunctionSpace,
     pairs: NodePairs,
     chains: Sequence[npt.ArrayLike],
     reach: float,

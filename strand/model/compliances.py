@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from ..beam.registry import Registry
 from ..contact.friction_laws import ElasticSlip, FrictionLaw
 from ..contact.hertz import hertz_mindlin
 from ..contact.normal_laws import NormalLaw, PenaltyLaw
@@ -77,7 +78,7 @@ class Compliance:
     uses: tuple[str, ...] = ()
 
 
-_COMPLIANCES: dict[str, Compliance] = {}
+_COMPLIANCES: Registry[Compliance] = Registry("compliance")
 
 
 def register_compliance(name: str, build: Build, *, uses: tuple[str, ...] = ()) -> Compliance:
@@ -88,23 +89,22 @@ def register_compliance(name: str, build: Build, *, uses: tuple[str, ...] = ()) 
         raise ValueError(
             f"compliance {name!r} uses {sorted(unknown)}: not among {', '.join(PENALTY_SETTINGS)}"
         )
-    _COMPLIANCES[name] = Compliance(name, build, tuple(uses))
-    return _COMPLIANCES[name]
+    return _COMPLIANCES.register(name, Compliance(name, build, tuple(uses)))
 
 
 def unregister_compliance(name: str) -> None:
     """Take the compliance ``name`` out of the registry."""
-    del _COMPLIANCES[name]
+    _COMPLIANCES.unregister(name)
 
 
 def compliances() -> tuple[str, ...]:
     """The registered compliances' names, in the order they were registered."""
-    return tuple(_COMPLIANCES)
+    return _COMPLIANCES.names()
 
 
 def compliance_named(name: str) -> Compliance:
     """The compliance ``name``; a ``KeyError`` if none is registered under it."""
-    return _COMPLIANCES[name]
+    return _COMPLIANCES.lookup(name)
 
 
 def _penalty(wires: Wires, settings) -> tuple[NormalLaw, FrictionLaw | None]:

@@ -39,13 +39,14 @@ ORDERING_TRIAL_SIZE = 50_000
 class Conditions(Protocol):
     """What the problem takes from its test set-up (a ``strand.setups.TestSetup``, which the
     model does not import: the set-ups are built on the model): its supports and its pair terms
-    (ties, nodal loads)."""
+    (ties, nodal loads). ``StrandProblem[S]`` keeps the set-up's own type ``S``, e.g.
+    ``StrandProblem[TestSetup]``."""
 
     bcs: list
     terms: list
 
 
-class StrandProblem:
+class StrandProblem[S: Conditions]:
     """The strand of ``geometry`` in the test ``setup``; ``solver`` is its ``NonlinearProblem``
     (whose ``solver`` in turn is the SNES).
 
@@ -67,13 +68,13 @@ class StrandProblem:
         contact: ContactSettings | None = None,
         options: NewtonOptions | None = None,
         *,
-        setup: Callable[[StrandModel], Conditions],
+        setup: Callable[[StrandModel], S],
         comm: MPI.Comm = MPI.COMM_WORLD,
-        monitor=None,
+        monitor: Callable[[int, float], None] | None = None,
         beam: BeamFactory = ReissnerBeam,
     ):
         self.model = StrandModel(geometry, contact, comm, beam=beam)
-        self.setup = setup(self.model)
+        self.setup: S = setup(self.model)
         # MUMPS ordering: PORD unless the case sets one; a large strand's pattern is factorised
         # with PORD and AMF once, and the cheaper kept (``strand.solver.ordering``)
         user = options.petsc if options is not None else {}

@@ -10,11 +10,18 @@ set-up's records as CSV columns named ``<field>_<unit>``. Units: m, N, N m, rad.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
 from ..solver import NodalLoad
+
+if TYPE_CHECKING:
+    from ..model.cell_results import CellResults
+
+Array = npt.NDArray[np.float64]
 
 __all__ = ["TestSetup", "PenaltyLinks", "pilot_links", "owned_load"]
 
@@ -27,6 +34,8 @@ class TestSetup(ABC):
         units: each parameter's unit as written in column names ("N", "1_per_m").
         cycle_parameter: the one a load programme cycles after tensioning.
         state_type, bending_type: the record types of ``state()`` and ``moment_curvature()``.
+        direction: the unit vector across the strand's axis that its loads bend it towards
+            (the neutral axis of the cell results is e_z × ``direction``).
         bcs: Dirichlet conditions on the model's space.
         terms: pair terms (ties, nodal loads) for the solver.
     """
@@ -36,6 +45,7 @@ class TestSetup(ABC):
     cycle_parameter: str = ""
     state_type: type
     bending_type: type
+    direction: npt.NDArray[np.float64]
     bcs: list
     terms: list
 
@@ -53,7 +63,7 @@ class TestSetup(ABC):
         ``progress()`` method giving the measure a progress line shows)."""
 
     @abstractmethod
-    def moment_curvature(self, cells, residual):
+    def moment_curvature(self, cells: CellResults, residual: Array):
         """The bending measures at the current state (a frozen dataclass), given the cell
         results (``cell_results.cell_results``) and the unconstrained residual (n_blocks, 6), whose
         values at supported dofs are the reactions."""
@@ -92,7 +102,7 @@ class PenaltyLinks:
         components: displacement components tied (0, 1, 2 = x, y, z).
     """
 
-    def __init__(self, pairs: npt.ArrayLike, stiffness: float, components=(2,)):
+    def __init__(self, pairs: npt.ArrayLike, stiffness: float, components: Sequence[int] = (2,)):
         self.stencils = np.asarray(pairs, dtype=np.int32).reshape(-1, 2)
         self.k = stiffness
         self.components = np.asarray(components, dtype=np.intp).reshape(-1)
@@ -104,7 +114,7 @@ class PenaltyLinks:
             K[i, j] = K[j, i] = -stiffness
         self._K = np.broadcast_to(K, (len(self.stencils), 12, 12))
 
-    def evaluate(self, w, jacobian):
+    def evaluate(self, w: Array, jacobian: bool) -> tuple[Array, Array | None]:
         c = self.components
         du = w[self.stencils[:, 1]][:, c] - w[self.stencils[:, 0]][:, c] - self.offset
         f = np.zeros((len(du), 12))

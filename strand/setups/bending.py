@@ -44,7 +44,7 @@ from dolfinx import fem
 
 from ..beam.records import quantity
 from ..contact.kinematics import rotation_matrix
-from ..model.cell_results import section_resultants
+from ..model.cell_results import CellResults, section_resultants
 from ..model.model import StrandModel
 from .base import TestSetup, pilot_links
 
@@ -150,7 +150,7 @@ class UniformBendingTest(TestSetup):
         self,
         model: StrandModel,
         zone: float | None = None,
-        direction=(1.0, 0.0, 0.0),
+        direction: npt.ArrayLike = (1.0, 0.0, 0.0),
         link_stiffness: float = 1e11,
     ):
         self.model = model
@@ -276,7 +276,7 @@ class UniformBendingTest(TestSetup):
         m1 = couple(self.ends1, r1)
         return float(m0 @ self.axis), float(-m1 @ self.axis)
 
-    def moment_curvature(self, cells, residual: Array) -> ZoneBending:
+    def moment_curvature(self, cells: CellResults, residual: Array) -> ZoneBending:
         resultants = [section_resultants(self.model, cells, z) for z in self.sections]
         moments = [-float(M @ self.axis) for M, _ in resultants]
         t_mid = self._core_tangents(np.array([self._section_core]))[0]

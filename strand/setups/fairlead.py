@@ -18,7 +18,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy.typing as npt
+
 from ..beam.records import quantity
+from ..model.model import StrandModel
 from .bending import UniformBendingTest
 
 __all__ = ["FairleadTest", "FairleadState"]
@@ -61,9 +64,9 @@ class FairleadTest(UniformBendingTest):
 
     def __init__(
         self,
-        model,
+        model: StrandModel,
         zone: float | None = None,
-        direction=(1.0, 0.0, 0.0),
+        direction: npt.ArrayLike = (1.0, 0.0, 0.0),
         *,
         cycle_parameter: str = "tension_swing",
         link_stiffness: float = 1e11,

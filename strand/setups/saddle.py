@@ -22,7 +22,7 @@ from dolfinx import fem
 
 from ..analytical.fibre import bending_stiffness_bounds
 from ..beam.records import quantity
-from ..model.cell_results import section_resultants
+from ..model.cell_results import CellResults, section_resultants
 from ..model.model import StrandModel
 from ..solver.displacement_control import DisplacementControl
 from .base import TestSetup, owned_load, pilot_links
@@ -165,7 +165,7 @@ class SaddleTest(TestSetup):
         self,
         model: StrandModel,
         saddle_length: float = 0.02,
-        direction=(1.0, 0.0, 0.0),
+        direction: npt.ArrayLike = (1.0, 0.0, 0.0),
         link_stiffness: float = 1e11,
         control: ControlledDisplacement | None = None,
     ):
@@ -313,7 +313,9 @@ class SaddleTest(TestSetup):
             *loads, self.measured_displacement(), self._prescribed * self.control.per_unit, solves
         )
 
-    def moment_curvature(self, cells, residual=None, fit_half_length=0.015) -> MidspanBending:
+    def moment_curvature(
+        self, cells: CellResults, residual: Array | None = None, fit_half_length: float = 0.015
+    ) -> MidspanBending:
         """Bending moment (N m) of the cross-section at z = L/2 and curvature (1/m) of the core.
 
         M = Σ_wires [(x_w − x_core) × n_w + m_w] · (e_z × d), from the elements that the section

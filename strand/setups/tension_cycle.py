@@ -8,9 +8,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from ..beam.records import quantity
 from ..model.cell_results import section_resultants
+from ..model.model import StrandModel
 from .saddle import SaddleTest
 
 __all__ = ["TensionCycleTest", "TensionCycleState", "TensionSection"]
@@ -57,7 +59,12 @@ class TensionCycleTest(SaddleTest):
     state_type = TensionCycleState
     bending_type = TensionSection
 
-    def __init__(self, model, saddle_length: float = 0.02, direction=(1.0, 0.0, 0.0)):
+    def __init__(
+        self,
+        model: StrandModel,
+        saddle_length: float = 0.02,
+        direction: npt.ArrayLike = (1.0, 0.0, 0.0),
+    ):
         super().__init__(model, saddle_length=saddle_length, direction=direction)
         self._tension = self._swing = 0.0
 

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import signal
 import threading
+from collections.abc import Callable
+from types import FrameType
+from typing import Any, TextIO
 
 __all__ = ["Interrupt"]
 
@@ -15,10 +18,11 @@ class Interrupt:
     its summary. A second Ctrl-C interrupts at once (``KeyboardInterrupt``). Outside the main
     thread, where Python cannot handle signals, it does nothing."""
 
-    def __init__(self, stream=None):
+    def __init__(self, stream: TextIO | None = None):
         self.requested = False
         self.stream = stream
-        self._previous = None
+        #: the SIGINT handler before ours, put back on exit
+        self._previous: Callable[[int, FrameType | None], Any] | int | None = None
 
     def _handle(self, signum, frame):
         if self.requested:

@@ -86,7 +86,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         if petsc_options_prefix == "":
             raise ValueError("PETSc options prefix cannot be empty.")
         jit = dict(form_compiler_options=form_compiler_options, jit_options=jit_options)
-        self._u = u
+        self._u: fem.Function = u  # one Function, not the base class's blocked list
         self._F = fem.form(F, **jit)
         self._J = fem.form(J if J is not None else ufl.derivative(F, u), **jit)
         self._preconditioner = None

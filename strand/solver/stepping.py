@@ -219,7 +219,7 @@ class LoadStepper:
         """Move the load parameter from ``start`` to ``end``; returns the records of this ramp.
         ``resume``: continue a ramp from one of its converged steps (``RampState``, as
         ``self.state`` held it there), so that the steps taken are those of the whole ramp."""
-        records = []
+        records: list[StepRecord] = []
         sign = 1.0 if end >= start else -1.0
         current = start
         step = min(self.step, self.max_step)
@@ -347,4 +347,5 @@ class LoadStepper:
     def _rejects(self, error: float, increment: float, proposal: float) -> bool:
         """Whether the controller rejects a converged step of ``increment``: not if its
         retry, at ``proposal``, would be no smaller (at ``min_step``)."""
+        assert self.controller is not None  # called only with an error controller
         return self.controller.rejects(error) and proposal < increment

@@ -74,7 +74,7 @@ class NodalLoad:
             raise ValueError("NodalLoad: one 6-vector of forces/moments per node is needed")
         self.factor = factor
 
-    def evaluate(self, w, jacobian):
+    def evaluate(self, w: Array, jacobian: bool) -> tuple[Array, None]:
         return -self.factor * self.values, None
 
     def commit(self) -> None:

@@ -19,7 +19,8 @@ class _CycleHistory:
 
     def __init__(self, parameter: str):
         self.parameter = parameter  # the cycle's load parameter, written with every step
-        self._tensioned = None  # (RunStep, arrays, load) of the latest tension step
+        #: (RunStep, arrays, load) of the latest tension step
+        self._tensioned: tuple[RunStep, dict, float] | None = None
         self.started = False
 
     def _arrays(self, ctx: StepContext) -> dict:

@@ -264,6 +264,7 @@ class PairGroup:
         """Add the springs of ``stabilise`` on the slip S dq and the change of gap dg (gap
         gradient G) to the residual f and tangent K, in place."""
         k = self._stabilisation
+        assert k is not None  # only called while the springs are on
         slip = np.einsum("pij,pj->pi", S, dq)
         m = S.shape[2]
         f[:, :m] += np.einsum("pij,pi->pj", S, k[:, None] * slip)

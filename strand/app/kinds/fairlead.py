@@ -156,7 +156,8 @@ class Fairlead(SetupKind):
         for key in (*CURVATURE_INPUTS, "bend_length", "curvature_swing"):
             value = getattr(load, key)
             if value < 0:
-                unit = declared(FairleadLoad.__dataclass_fields__[key]).unit
+                setting = declared(FairleadLoad.__dataclass_fields__[key])
+                unit = setting.unit if setting is not None else ""
                 raise CaseError(
                     f"[load] {key} = {value:g} {unit}: expected a positive value (the bending "
                     "direction is [load] direction, the cycle gives the swing's signs), or 0 "

@@ -163,3 +163,21 @@ def test_a_cheap_run_of_the_case_writes_the_wire_level_versus_t_n_comparison(tmp
     assert re.search(r"DNV-OS-E301 spiral rope .*: damage [\d.]+e-\d+ per cycle", text)
     wire = re.search(r"wire-level model on the same history: largest damage ([\d.e+-]+)", text)
     assert 0 < float(wire[1]) < 1
+
+
+def test_the_shipped_tension_history_gives_the_mooring_pages_spectrum(capsys):
+    """docs/mooring.md walks from cases/mooring_judge120_history.csv to a year of damage: its
+    rainflow count, in three classes scaled from the record's own duration to a year, is the
+    spectrum the page runs: ±2.5, ±5 and ±7.5 % MBS, 4e6, 1e6 and 1e5 cycles, each amplitude read
+    in N from the kN column."""
+    history = CASE.parent / "mooring_judge120_history.csv"
+    args = ["spectrum", str(history), "--column", "tension_kN", "--time-column", "time_s"]
+    assert main([*args, "--period", "1y", "--bins", "3"]) == 0
+    out = capsys.readouterr().out
+    block = out.split("[fatigue.spectrum]")[1]
+    classes = [[float(a), float(n)] for a, n in re.findall(r"\[([\d.]+), ([\d.]+)\]", block)]
+    mbs = MEASURED_BREAK
+    expected = [[0.025 * mbs, 4e6], [0.05 * mbs, 1e6], [0.075 * mbs, 1e5]]
+    np.testing.assert_allclose(classes, expected, rtol=1e-9)
+    page = (CASE.parents[1] / "docs" / "mooring.md").read_text()
+    assert "classes = [" + ", ".join(f"[{a:.0f}, {n:.0f}]" for a, n in classes) + "]" in page

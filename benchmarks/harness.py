@@ -1,5 +1,5 @@
-"""What the benchmark scripts share: the stamp line, table printing, peak memory, and the runs of
-named variants each in a process of its own.
+"""What the benchmark scripts share: their argument parser, the stamp line, table printing, peak
+memory, and the runs of named variants each in a process of its own.
 
 A script in this folder imports it as ``from harness import …`` (the script's folder is first on
 Python's path when it runs). It imports nothing of strand, dolfinx or MPI: mpi4py only where a
@@ -8,6 +8,7 @@ communicator is passed in.
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import resource
@@ -19,6 +20,33 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def parser(doc: str, quick: str) -> argparse.ArgumentParser:
+    """A script's argument parser: its docstring ``doc`` as the description (the first
+    paragraph) and the epilog (the rest, its ``Run:`` line on, as written), and ``--quick``,
+    the same code path on the smallest problem that takes it, as a smoke test of the script
+    (its numbers mean nothing); ``quick`` says what that runs."""
+    first, _, rest = doc.strip().partition("\n\n")
+    out = argparse.ArgumentParser(
+        description=first,
+        epilog=rest,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    out.add_argument("--quick", action="store_true", help=f"a smoke test: {quick}")
+    return out
+
+
+def add_settings(parser: argparse.ArgumentParser, example: str = "load.lateral=1000") -> None:
+    """``--set section.key=value`` (repeated, as ``strand run --set``) into ``settings``."""
+    parser.add_argument(
+        "--set",
+        dest="settings",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help=f"a case setting, as strand run --set (e.g. {example}); repeat for more",
+    )
 
 
 def _git(*args: str) -> str:

@@ -1,25 +1,27 @@
 """Cost of the beam forms: JIT time and one Newton iteration on a 10,000-element beam.
 
-Run: .venv/bin/python benchmarks/beam_newton.py [n_cells]   (set XDG_CACHE_HOME to a fresh folder
-to measure a cold JIT). Prints a table: time, Newton iterations, peak memory.
+Run: .venv/bin/python benchmarks/beam_newton.py [n_cells] [--quick]   (default 10,000 cells;
+--quick: 100; set XDG_CACHE_HOME to a fresh folder to measure a cold JIT). Prints a table: time,
+Newton iterations, peak memory.
 """
 
 import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
 
 import numpy as np
 import ufl
 from dolfinx import fem, mesh
-from harness import peak_mib, stamp
+from harness import parser, peak_mib, stamp, table
 from mpi4py import MPI
 
 from forms import CircularSection, ReissnerBeam
 from strand.cable.mesh import beam_space, input_to_block, polyline_mesh
 from strand.solver import NodalLoad, NonlinearProblem
+
+QUICK_CELLS = 100
 
 
 def main(n_cells: int = 10_000) -> None:
@@ -59,7 +61,7 @@ def main(n_cells: int = 10_000) -> None:
     tm = problem.timings
     lu = total - tm["residual"] - tm["jacobian"]
     peak = peak_mib()
-    rows = [
+    cells = [
         ("cells / unknowns", f"{n_cells} / {V.dofmap.index_map.size_global * 6}"),
         ("JIT residual F (s)", f"{t_F:.2f}"),
         ("JIT Jacobian J (s)", f"{t_J:.2f}"),
@@ -70,13 +72,14 @@ def main(n_cells: int = 10_000) -> None:
         ("  LU factorisation + solve per iteration (s)", f"{lu / its:.3f}"),
         ("peak memory (MiB)", f"{peak:.0f}"),
     ]
-    width = max(len(a) for a, _ in rows)
-    for a, b in rows:
-        print(f"{a:<{width}}  {b}")
+    print(table(cells, ["measure", "value"], plain=True))
 
 
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, f"{QUICK_CELLS} cells")
+    cli.add_argument("n_cells", nargs="?", type=int, default=10_000, help="default 10,000")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 10_000)
+    main(QUICK_CELLS if args.quick else args.n_cells)

@@ -1,6 +1,8 @@
 """Contact compliance and the strand's moment–curvature: penalty + elastic slip against Hertz + Mindlin.
 
-Run: .venv/bin/python benchmarks/bending_compliance.py [kappa_max] [length]
+Run: .venv/bin/python benchmarks/bending_compliance.py [kappa_max] [length] [--quick]
+(--quick: the seed's penalty and Hertz + Mindlin on 0.1 m to 0.01 1/m)
+
 Runs the uniform bending test (Cardinal, 40 kN, first loading leg to kappa_max, default 0.1 1/m,
 on a length default 1 m) with the seed paper's penalty (K_N = 5e4 N/mm) and elastic slips g_lim of
 0.5, 1, 5 (the seed's) and 25 µm, and with contact mechanics (``[contact] compliance = "hertz"``).
@@ -14,10 +16,9 @@ import strand  # noqa: F401
 # isort: split
 
 import io
-import sys
 import time
 
-from harness import peak_mib, stamp
+from harness import parser, peak_mib, stamp
 
 from strand.analytical import StickSlipLaw
 from strand.analytical.fibre import bending_stiffness_bounds
@@ -34,12 +35,17 @@ VARIANTS = {
     "Hertz + Mindlin": ("hertz", {"compliance": "hertz"}),
 }
 KAPPAS = (0.01, 0.05, 0.1)
+#: ``--quick``: kappa_max (1/m), length (m), variants
+QUICK = (0.01, 0.1, ("penalty, g_lim 5 µm", "Hertz + Mindlin"))
 
 
-def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
+def main(
+    kappa_max: float = 0.1, length: float = 1.0, variants: tuple[str, ...] = tuple(VARIANTS)
+) -> None:
     print(f"stamp: {stamp()}\n")
     rows = []
-    for name, (key, contact) in VARIANTS.items():
+    for name in variants:
+        key, contact = VARIANTS[name]
         case = case_from_dict(
             {
                 "mesh": {"length": length},
@@ -95,5 +101,12 @@ def main(kappa_max: float = 0.1, length: float = 1.0) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "two variants on 0.1 m to 0.01 1/m")
+    cli.add_argument("kappa_max", nargs="?", type=float, default=0.1, help="1/m (default 0.1)")
+    cli.add_argument("length", nargs="?", type=float, default=1.0, help="m (default 1)")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main(*(float(a) for a in sys.argv[1:3]))
+    if args.quick:
+        main(*QUICK)
+    else:
+        main(args.kappa_max, args.length)

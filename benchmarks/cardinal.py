@@ -1,6 +1,8 @@
 """The whole Cardinal case (the default of ``strand run``): time, steps, Newton iterations.
 
-Run: .venv/bin/python benchmarks/cardinal.py [case.toml]
+Run: .venv/bin/python benchmarks/cardinal.py [case.toml] [--set key=value …] [--quick]
+(--quick: the case over 0.05 m, one leg to +0.5 kN)
+
 Runs the case with all its outputs (XDMF, CSV, figures) and prints total time, steps, Newton
 iterations, time per iteration split into assembly, contact and LU, and peak memory. Target on the
 2-core development machines: the whole case in under 3 minutes.
@@ -11,18 +13,20 @@ import strand  # noqa: F401
 # isort: split
 
 import io
-import sys
 import time
 
-from harness import peak_mib, stamp
+from harness import add_settings, parser, peak_mib, stamp
 
 from strand.app.case import load_case
 from strand.app.run import run_case
 
+#: ``--quick``: a short piece, one leg
+QUICK = ["mesh.length=0.05", "load.lateral=500", "load.cycle=[1.0]"]
 
-def main(case_file: str | None = None) -> None:
+
+def main(case_file: str | None = None, settings: list[str] | None = None) -> None:
     print(f"stamp: {stamp()}\n")
-    case = load_case(case_file)
+    case = load_case(case_file, settings or [])
     t0 = time.perf_counter()
     log = io.StringIO()
     result = run_case(case, "results/benchmark_cardinal", stream=log, overwrite=True)
@@ -73,5 +77,9 @@ def main(case_file: str | None = None) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "the case over 0.05 m, one leg to +0.5 kN")
+    cli.add_argument("case", nargs="?", help="a case file (default: the built-in Cardinal case)")
+    add_settings(cli)
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main(*sys.argv[1:2])
+    main(args.case, [*(QUICK if args.quick else []), *args.settings])

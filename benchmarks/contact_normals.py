@@ -1,6 +1,8 @@
 """Compare the three contact normals on Cardinal: convergence, cost and gap accuracy.
 
-Run: .venv/bin/python benchmarks/contact_normals.py [length_m] [P_max_N] [frictionless]
+Run: .venv/bin/python benchmarks/contact_normals.py [length_m] [P_max_N] [frictionless] [--quick]
+(default 1 m, 4300 N; --quick: 0.1 m to 500 N)
+
 Contacts use the seed paper's penalty compliance (compliance = "penalty"), as in the README table.
 For each normal (neighbour, director, frozen): 40 kN tension, then the saddle load 0 → P_max. Prints
 per normal the Newton iterations per step, step cuts, wall time, time per iteration, midspan
@@ -12,11 +14,10 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
 
 import numpy as np
-from harness import stamp
+from harness import parser, stamp
 
 from strand.cable.description import cardinal
 from strand.cable.geometry import build_geometry
@@ -92,10 +93,11 @@ def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False)
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "0.1 m to 500 N")
+    cli.add_argument("length", nargs="?", type=float, default=1.0, help="m (default 1)")
+    cli.add_argument("p_max", nargs="?", type=float, default=4300.0, help="N (default 4300)")
+    cli.add_argument("frictionless", nargs="?", choices=["frictionless"], help="friction off")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    args = sys.argv[1:]
-    main(
-        float(args[0]) if len(args) > 0 else 1.0,
-        float(args[1]) if len(args) > 1 else 4300.0,
-        len(args) > 2 and args[2] == "frictionless",
-    )
+    length, p_max = (0.1, 500.0) if args.quick else (args.length, args.p_max)
+    main(length, p_max, args.frictionless is not None)

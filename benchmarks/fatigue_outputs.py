@@ -1,6 +1,8 @@
 """What each per-step output costs at Cardinal size (1 m, 61 wires, 7,386 pairs, 21,521 elements).
 
-Run: .venv/bin/python benchmarks/fatigue_outputs.py [steps]
+Run: .venv/bin/python benchmarks/fatigue_outputs.py [steps] [--length L] [--quick]
+(default 10 steps on 1 m; --quick: 2 steps on 0.1 m)
+
 Pulls the strand to 40 kN and takes one lateral step (250 N, friction on), then records that state
 ``steps`` times (default 10) with every recorder of a run, side by side, into a scratch folder:
 time per step (s) and disk per step (MB) of the fatigue histories (contact pairs with their ParaView
@@ -12,12 +14,11 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import tempfile
 import time
 from pathlib import Path
 
-from harness import stamp
+from harness import parser, stamp
 
 from strand.app.fatigue.recorders import PairHistory, WireSectionHistory
 from strand.app.recorders import AxialForceTable, FieldSeries
@@ -39,9 +40,9 @@ def _size(paths) -> int:
     return total
 
 
-def main(steps: int = 10) -> None:
+def main(steps: int = 10, length: float = 1.0) -> None:
     print(f"stamp: {stamp()}\n")
-    geometry = build_geometry(cardinal(), 1.0, 4e-3)
+    geometry = build_geometry(cardinal(), length, 4e-3)
     problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-2), setup=SaddleTest)
     LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
     problem.setup.set_lateral(250.0)
@@ -82,7 +83,7 @@ def main(steps: int = 10) -> None:
         for r, _ in recorders.values():
             r.close()
         print(
-            f"Cardinal 1 m, 40 kN + 250 N, {steps} recorded steps (cell results: "
+            f"Cardinal {length:g} m, 40 kN + 250 N, {steps} recorded steps (cell results: "
             f"{t_cells / steps:.3f} s per step, shared)"
         )
         print(f"{'output':28s} {'s per step':>11s} {'MB per step':>12s}")
@@ -95,5 +96,9 @@ def main(steps: int = 10) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "2 steps on 0.1 m")
+    cli.add_argument("steps", nargs="?", type=int, default=10, help="recorded (default 10)")
+    cli.add_argument("--length", type=float, default=1.0, help="m (default 1)")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main(*(int(a) for a in sys.argv[1:2]))
+    main(*((2, 0.1) if args.quick else (args.steps, args.length)))

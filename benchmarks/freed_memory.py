@@ -22,7 +22,7 @@ import resource
 import time
 from pathlib import Path
 
-from harness import peak_mib, print_result, run_variants, stamp, table
+from harness import parser, peak_mib, print_result, run_variants, stamp, table
 from window import WINDOW  # the main job's window (this folder, the script's first path)
 
 ROOT = Path("results/benchmark_freed_memory")
@@ -99,12 +99,11 @@ def main(ranks: int, length: float, quick: bool) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--quick", action="store_true", help="0.05 m on 1 rank")
-    parser.add_argument("--ranks", type=int, default=2)
-    parser.add_argument("--length", type=float, default=0.3, help="m")
-    parser.add_argument("--one", help=argparse.SUPPRESS)
-    args = parser.parse_args()
+    cli = parser(__doc__, "0.05 m on 1 rank")
+    cli.add_argument("--ranks", type=int, default=2, help="MPI ranks per variant (default 2)")
+    cli.add_argument("--length", type=float, default=0.3, help="m (default 0.3)")
+    cli.add_argument("--one", help=argparse.SUPPRESS)  # a variant's own process
+    args = cli.parse_args()
     length = 0.05 if args.quick else args.length
     if args.one:
         from mpi4py import MPI

@@ -35,7 +35,6 @@ import strand  # noqa: F401  (dolfinx's environment first)
 
 # isort: split
 
-import argparse
 import csv
 import re
 import subprocess
@@ -45,7 +44,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from harness import ROOT, stamp, table
+from harness import ROOT, parser, stamp, table
 
 from strand.analytical import StickSlipLaw
 from strand.app.case import load_case
@@ -179,12 +178,11 @@ def row(name: str, run: dict, seconds: float, law) -> list[str]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("states", nargs="*", default=list(STATES), choices=list(STATES))
-    parser.add_argument("--ranks", type=int, default=2)
-    parser.add_argument("--quick", action="store_true", help="0.1 m to 0.02 1/m, one process")
-    parser.add_argument("--keep", type=Path, help="keep each state's run in this folder")
-    args = parser.parse_args()
+    cli = parser(__doc__, "0.1 m to 0.02 1/m, one process")
+    cli.add_argument("states", nargs="*", default=list(STATES), choices=list(STATES))
+    cli.add_argument("--ranks", type=int, default=2, help="MPI ranks per state (default 2)")
+    cli.add_argument("--keep", type=Path, help="keep each state's run in this folder")
+    args = cli.parse_args()
     ranks = 1 if args.quick else args.ranks
     print(stamp())
     head = ["state", "M/κ / EI_max", *(f"M at {k:g}" for k in KAPPAS)]

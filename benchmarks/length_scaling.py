@@ -1,7 +1,8 @@
 """Cost against cable length: Cardinal at 0.25, 0.5, 1 and 2 m, tension and a first lateral leg.
 
-Run: .venv/bin/python benchmarks/length_scaling.py [lengths…] [setting=value …]
-(settings as `strand run --set`, e.g. 'steps.line_search="basic"' for full Newton steps)
+Run: .venv/bin/python benchmarks/length_scaling.py [lengths…] [setting=value …] [--quick]
+(settings as `strand run --set`, e.g. 'steps.line_search="basic"' for full Newton steps;
+--quick: 0.05 and 0.1 m, each to 200 N)
 
 Every length runs the default case's tension (40 kN) and a first leg to a lateral load scaled to
 give the same midspan moment, P = 1 kN × (1 m / L) (PL/8 for the clamped span), so that the
@@ -15,16 +16,19 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
-from harness import peak_mib, stamp
+from harness import parser, peak_mib, stamp
 
 from strand.app.case import load_case
 from strand.app.run import run_case
 from strand.cable.geometry import build_geometry
+
+#: ``--quick``: the lengths (m) and the lateral load, over every length's own
+QUICK_LENGTHS = [0.05, 0.1]
+QUICK_LATERAL = "load.lateral=200"
 
 
 def main(lengths: list[float], extra: list[str]) -> None:
@@ -79,7 +83,17 @@ def main(lengths: list[float], extra: list[str]) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "0.05 and 0.1 m, each to 200 N")
+    cli.add_argument(
+        "items", nargs="*", metavar="length or setting", help="m (default 0.25 0.5 1 2); key=value"
+    )
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    args = sys.argv[1:]
-    settings = [a for a in args if "=" in a]
-    main([float(a) for a in args if "=" not in a] or [0.25, 0.5, 1.0, 2.0], settings)
+    settings = [a for a in args.items if "=" in a]
+    try:
+        lengths = [float(a) for a in args.items if "=" not in a]
+    except ValueError as e:
+        cli.error(f"a length (m) or a setting key=value: {e}")
+    if args.quick:
+        lengths, settings = QUICK_LENGTHS, [*settings, QUICK_LATERAL]
+    main(lengths or [0.25, 0.5, 1.0, 2.0], settings)

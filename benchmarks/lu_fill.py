@@ -1,6 +1,6 @@
 """What same-layer contact does to the LU: Cardinal's tangent pattern factorised by MUMPS.
 
-Run: .venv/bin/python benchmarks/lu_fill.py [length_m]   (default 1.0)
+Run: .venv/bin/python benchmarks/lu_fill.py [length_m] [--quick]   (default 1.0; --quick: 0.05)
 
 For the strand of the default case (Cardinal, h_max 4 mm) the Jacobian's sparsity pattern (the
 beam forms' extended by the pair stencils, ``strand.solver.terms.create_extended_matrix``) with:
@@ -18,11 +18,10 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
 
 import numpy as np
-from harness import stamp, table
+from harness import parser, stamp, table
 
 from strand.app.case import load_case
 from strand.cable.geometry import build_geometry
@@ -126,4 +125,7 @@ def main(length: float = 1.0) -> None:
 
 
 if __name__ == "__main__":
-    main(*(float(a) for a in sys.argv[1:2]))
+    cli = parser(__doc__, "0.05 m")
+    cli.add_argument("length", nargs="?", type=float, default=1.0, help="m (default 1)")
+    args = cli.parse_args()
+    main(0.05 if args.quick else args.length)

@@ -1,16 +1,17 @@
 """Time to build the Cardinal strand (geometry, pairs, dolfinx mesh, dof blocks of the pairs).
 
-Run: .venv/bin/python benchmarks/mesh_build.py [case.toml]. Target: under 5 s for Cardinal, 1 m, 4 mm.
+Run: .venv/bin/python benchmarks/mesh_build.py [case.toml] [--repeats N] [--quick]
+(default: the built-in Cardinal case, 1 m, 4 mm elements, best of 5; --quick: 0.1 m, once).
+Target: under 5 s for Cardinal, 1 m, 4 mm.
 """
 
 import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
 
-from harness import stamp
+from harness import parser, stamp
 from mpi4py import MPI
 
 from strand.app.case import load_case
@@ -19,9 +20,9 @@ from strand.cable.geometry import build_geometry
 from strand.cable.mesh import beam_space, cable_mesh
 
 
-def main(case_file=None, repeats: int = 5) -> None:
+def main(case_file: str | None = None, repeats: int = 5, settings: list[str] | None = None) -> None:
     print(f"stamp: {stamp()}\n")
-    case = load_case(case_file)
+    case = load_case(case_file, settings or [])
     rows = []
     for _ in range(repeats):
         t = [time.perf_counter()]
@@ -45,5 +46,12 @@ def main(case_file=None, repeats: int = 5) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "0.1 m, built once")
+    cli.add_argument("case", nargs="?", help="a case file (default: the built-in Cardinal case)")
+    cli.add_argument("--repeats", type=int, default=5, help="builds, the best kept (default 5)")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main(sys.argv[1] if len(sys.argv) > 1 else None)
+    if args.quick:
+        main(args.case, 1, ["mesh.length=0.1"])
+    else:
+        main(args.case, args.repeats)

@@ -3,7 +3,8 @@
 Run: .venv/bin/python benchmarks/newton_levers.py TENSIONED_H5 [variant …]
 (TENSIONED_H5: ``tensioned.h5`` of a run of the default case, ``strand run cardinal``; variants:
 newton (default), lag2, amf, reuse_lu, lbfgs; none named: all, one after the other in this
-process)
+process), or ``newton_levers.py --quick [variant …]``: the default case over 0.05 m, its
+tensioned state made first by a run of its own
 
 From the tensioned state, the first four steps of leg 1 (250, 437.5, 578.125, 718.75 N: the
 default case's own) are solved from the converged state before each, with the case's Newton
@@ -21,14 +22,18 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
+import os
+import tempfile
 import time
+from collections.abc import Sequence
+from pathlib import Path
 
-from harness import stamp
+from harness import parser, stamp
 from petsc4py import PETSc
 
 from strand.app.build import build_problem
 from strand.app.case import load_case
+from strand.app.run import run_case
 from strand.model.checkpoint import read_checkpoint, restore
 
 LOADS = (250.0, 437.5, 578.125, 718.75)
@@ -41,9 +46,27 @@ VARIANTS = {
 }
 
 
-def run(path: str, name: str) -> None:
+#: ``--quick``: the case's length
+QUICK = ["mesh.length=0.05"]
+
+
+def tensioned(folder: Path, settings: list[str]) -> Path:
+    """``tensioned.h5`` of the default case under ``settings``, pulled to its tension alone by a
+    run into ``folder``."""
+    outputs = ["output.fields=false", "output.plots=false", "fatigue.outputs=false"]
+    case = load_case(None, [*settings, "load.cycle=[0.0]", *outputs])
+    with open(os.devnull, "w") as sink:
+        result = run_case(case, folder, stream=sink, overwrite=True)
+    if result.failure:
+        raise SystemExit(f"the tension stopped: {result.failure}")
+    return folder / "tensioned.h5"
+
+
+def run(path: str | Path, name: str, case_settings: Sequence[str] = ()) -> None:
+    """The first steps of leg 1 from the tensioned state in ``path`` under variant ``name``,
+    the case under ``case_settings``: a table row per step, then the variant's totals."""
     settings, options = VARIANTS[name]
-    problem, _ = build_problem(load_case(None, settings))
+    problem, _ = build_problem(load_case(None, [*case_settings, *settings]))
     s = problem.solver
     prefix = s.solver.getOptionsPrefix()
     for key, value in options.items():
@@ -89,12 +112,29 @@ def run(path: str, name: str) -> None:
 
 
 if __name__ == "__main__":
-    names = sys.argv[2:] or list(VARIANTS)
+    cli = parser(__doc__, "0.05 m, its tensioned state made first")
+    cli.add_argument("tensioned", nargs="?", metavar="TENSIONED_H5", help="(not with --quick)")
+    cli.add_argument("variants", nargs="*", metavar="variant", help=f"of {list(VARIANTS)}")
+    args = cli.parse_args()
+    names = args.variants
+    if args.quick and args.tensioned is not None:  # --quick [variant …]: no file
+        names = [args.tensioned, *names]
+    elif not args.quick and args.tensioned is None:
+        cli.error("the tensioned state to start from (TENSIONED_H5) is required")
+    unknown = [n for n in names if n not in VARIANTS]
+    if unknown:
+        cli.error(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
+    names = names or list(VARIANTS)
     PETSc.Log.begin()
     print(f"stamp: {stamp()}\n")
     print(
         "| variant | lateral (N) | converged | iterations | LUs | solves | s | residual norms (N) |"
     )
     print("|---|---|---|---|---|---|---|---|")
-    for name in names:
-        run(sys.argv[1], name)
+    with tempfile.TemporaryDirectory() as scratch:
+        if args.quick:
+            path, settings = tensioned(Path(scratch) / "tension", QUICK), QUICK
+        else:
+            path, settings = args.tensioned, []
+        for name in names:
+            run(path, name, settings)

@@ -1,6 +1,8 @@
 """Small vs large sliding on the same mesh, laws and solver: forces, deflections, cost.
 
 Run: .venv/bin/python benchmarks/sliding_comparison.py [helix|cardinal] [P_max_N] [length_m]
+[--quick]   (--quick: the helix over 0.05 m to 200 N)
+
 Contacts use the seed paper's penalty compliance (compliance = "penalty"), as in the README table.
 (a) helix: a 1+6 strand (Cardinal's core and first layer: six helices wound on a straight core),
     0.2 m, 40 kN, saddle to 600 N;
@@ -17,11 +19,10 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
 from pathlib import Path
 
-from harness import stamp
+from harness import parser, stamp
 
 from strand.app.compare import difference_table, overlay_figure
 from strand.cable.description import Cable, cardinal
@@ -108,5 +109,13 @@ def main(which: str = "helix", p_max: float | None = None, length: float | None 
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "the helix over 0.05 m to 200 N")
+    cli.add_argument("case", nargs="?", default="helix", choices=["helix", "cardinal"])
+    cli.add_argument("p_max", nargs="?", type=float, help="N (default 600 helix, 4300 cardinal)")
+    cli.add_argument("length", nargs="?", type=float, help="m (default 0.2 helix, 1 cardinal)")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    main(*(sys.argv[1:2] or ["helix"]), *[float(x) for x in sys.argv[2:4]])
+    if args.quick:
+        main("helix", 200.0, 0.05)
+    else:
+        main(args.case, args.p_max, args.length)

@@ -19,13 +19,13 @@ import strand  # noqa: F401
 
 # isort: split
 
+import argparse
 import os
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
-from harness import peak_mib, print_result, run_variants, stamp, table
+from harness import parser, peak_mib, print_result, run_variants, stamp, table
 
 ROOT = Path("results/benchmark_speed")
 QUICK = ["mesh.length=0.05", "load.lateral=500", "load.cycle=[1.0]"]  # a smoke test of the script
@@ -192,17 +192,19 @@ def compare(names: list[str], reference: str) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
-    if "--one" not in sys.argv:
-        serial_only("this benchmark (it launches its 2-rank variant itself)")
-    args = sys.argv[1:]
-    quick = "--quick" in args
-    args = [a for a in args if a != "--quick"]
-    unknown = [a for a in args if a not in VARIANTS and a != "--one"]
+    cli = parser(__doc__, "0.05 m to +0.5 kN")
+    cli.add_argument(
+        "variants", nargs="*", metavar="variant", help="named in VARIANTS (none: DEFAULT_RUN's)"
+    )
+    cli.add_argument("--one", help=argparse.SUPPRESS)  # a variant's own process
+    args = cli.parse_args()
+    unknown = [a for a in [*args.variants, *([args.one] if args.one else [])] if a not in VARIANTS]
     if unknown:
-        raise SystemExit(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
-    if args[:1] == ["--one"]:
+        cli.error(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
+    if args.one:
         from mpi4py import MPI
 
-        print_result(run_variant(args[1], quick), MPI.COMM_WORLD)
+        print_result(run_variant(args.one, args.quick), MPI.COMM_WORLD)
     else:
-        main(args or DEFAULT_RUN, quick)
+        serial_only("this benchmark (it launches its 2-rank variant itself)")
+        main(args.variants or DEFAULT_RUN, args.quick)

@@ -18,14 +18,13 @@ import strand  # noqa: F401  (dolfinx's environment first)
 
 # isort: split
 
-import argparse
 import io
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
-from harness import stamp, table
+from harness import parser, stamp, table
 
 from strand.analytical.fibre import fibre_model
 from strand.app.case import case_from_dict
@@ -98,11 +97,10 @@ def main(springs: list[float], length: float, tension: float) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("springs", nargs="*", type=float, default=[0.0, 1e3, 1e4, 1e5])
-    parser.add_argument("--length", type=float, default=0.5, help="m (default 0.5)")
-    parser.add_argument("--quick", action="store_true", help="0.2 m to 2 kN: a smoke test")
-    args = parser.parse_args()
+    cli = parser(__doc__, "0.2 m to 2 kN")
+    cli.add_argument("springs", nargs="*", type=float, default=[0.0, 1e3, 1e4, 1e5], help="N/m")
+    cli.add_argument("--length", type=float, default=0.5, help="m (default 0.5)")
+    args = cli.parse_args()
     if args.quick:
         main(args.springs, 0.2, 2e3)
     else:

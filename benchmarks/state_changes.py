@@ -1,7 +1,8 @@
 """Where Newton's iterations go: contact pairs changing state between iterations, per interface.
 
 Run: [.venv/bin/mpirun -n 2] .venv/bin/python benchmarks/state_changes.py [--case case.toml]
-[--set key=value …] [--residuals]
+[--set key=value …] [--residuals] [--quick]
+(--quick: the window on 0.1 m to 1 kN, as ``window.py --quick``)
 
 Runs the window of the main job (Cardinal, 1 m: the tension, then the first leg to +4.3 kN,
 outputs off; ``--set`` changes any setting, e.g. ``--set load.lateral=1000``) and watches every
@@ -18,14 +19,13 @@ import strand  # noqa: F401
 # isort: split
 
 import os
-import sys
 import time
 from collections import defaultdict
 
 import numpy as np
-from harness import stamp, table
+from harness import add_settings, parser, stamp, table
 from mpi4py import MPI
-from window import WINDOW  # the main job's window (this folder, the script's first path)
+from window import QUICK, WINDOW  # the main job's window (this folder, the script's first path)
 
 from strand.contact.group import PairGroup
 from strand.model.model import StrandModel
@@ -108,7 +108,7 @@ def _patch() -> None:
     LoadStepper.ramp = stepper_ramp
 
 
-def main(settings: list[str], case_file: str | None) -> None:
+def main(settings: list[str], case_file: str | None, residuals: bool = False) -> None:
     from strand.app.case import load_case
     from strand.app.run import run_case
 
@@ -136,7 +136,7 @@ def main(settings: list[str], case_file: str | None) -> None:
         f"{sum(s.failed_iterations for s in result.steps)} in failed attempts, {seconds:.0f} s "
         f"on {comm.size} rank(s); {' '.join(settings)}"
     )
-    if "--residuals" in sys.argv:
+    if residuals:
         for stage, converged, residuals in SOLVES:
             print(
                 f"{stage:10s} {'ok  ' if converged else 'FAIL'} "
@@ -180,7 +180,9 @@ def main(settings: list[str], case_file: str | None) -> None:
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
-    cases = [args[i + 1] for i, a in enumerate(args) if a == "--case"]
-    main(sets, cases[0] if cases else None)
+    cli = parser(__doc__, "the window on 0.1 m to 1 kN")
+    cli.add_argument("--case", help="a case file (default: the built-in Cardinal case)")
+    add_settings(cli)
+    cli.add_argument("--residuals", action="store_true", help="every solve's residual norms")
+    args = cli.parse_args()
+    main([*(QUICK if args.quick else []), *args.settings], args.case, args.residuals)

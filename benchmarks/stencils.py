@@ -1,8 +1,9 @@
 """Same-layer stencils against the mesh error: node to segment, nearest node, facing stations, at h
 and h/2.
 
-Run: .venv/bin/python benchmarks/stencils.py [--set key=value …]
-(default: Cardinal over 0.3 m, 40 kN, then the saddle to +4.3 kN; ``--set`` changes the case)
+Run: .venv/bin/python benchmarks/stencils.py [--set key=value …] [--quick]
+(default: Cardinal over 0.3 m, 40 kN, then the saddle to +4.3 kN; ``--set`` changes the case;
+--quick: 0.05 m to +0.5 kN)
 
 A discretisation change is acceptable where it moves the results by less than the mesh error.
 Each stencil of ``[contact] same_layer_stencil`` runs at ``h_max`` and at ``h_max``/2; printed per
@@ -21,7 +22,7 @@ import sys
 import time
 
 import numpy as np
-from harness import stamp
+from harness import add_settings, parser, stamp
 
 from strand.app.build import build_problem
 from strand.app.case import load_case
@@ -30,6 +31,7 @@ from strand.model.cell_results import cell_results
 from strand.model.programme import run_programme
 
 CASE = ["mesh.length=0.3", "load.cycle=[1.0]"]
+QUICK = ["mesh.length=0.05", "load.lateral=500"]
 #: ``[contact] same_layer_stencil``
 VARIANTS = ["segment", "node", "facing"]
 
@@ -116,5 +118,7 @@ def main(settings: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    main([args[i + 1] for i, a in enumerate(args) if a == "--set"])
+    cli = parser(__doc__, "0.05 m to +0.5 kN")
+    add_settings(cli, "steps.retry=true")
+    args = cli.parse_args()
+    main([*(QUICK if args.quick else []), *args.settings])

@@ -1,7 +1,9 @@
 """Stick bending: what the slip measure and same-layer contact do to a strand's moment–curvature.
 
 Run: .venv/bin/python benchmarks/stick_bending.py [strand ...] [--length L] [--slip M ...]
-[--same-layer S ...]
+[--same-layer S ...] [--quick]
+(--quick: the 1+6+12 over 0.1 m, surface slip, packed layers, to κ = 0.01 1/m)
+
 Strands: "19" (Cardinal's core and layers 1–2, 0.3 m, 10 kN) and "cardinal" (0.6 m, 40 kN), each
 with its own friction and Hertz + Mindlin contact. For each slip measure (surface, centreline:
 ``strand.contact.element``) and same-layer setting (off, nominal, packed:
@@ -20,12 +22,11 @@ import strand  # noqa: F401
 
 # isort: split
 
-import argparse
 import time
 from functools import partial
 
 import numpy as np
-from harness import stamp, table
+from harness import parser, stamp, table
 
 from strand.analytical import StickSlipLaw, stick_bending_estimate
 from strand.analytical.fibre import bending_stiffness_bounds
@@ -38,6 +39,8 @@ from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
 
 KAPPAS = (0.002, 0.01, 0.05, 0.1, 0.25, 0.5)  # 1/m, nominal
+#: ``--quick``: strand, span (m), slip measure, same-layer setting, the curvatures of KAPPAS
+QUICK = ("19", 0.1, "surface", "packed", KAPPAS[:2])
 
 
 def strands() -> dict[str, tuple[Cable, float, float]]:
@@ -46,9 +49,16 @@ def strands() -> dict[str, tuple[Cable, float, float]]:
     return {"19": (Cable("1+6+12", c.layers[:3]), 0.3, 10e3), "cardinal": (c, 0.6, 40e3)}
 
 
-def bend(cable: Cable, length: float, tension: float, same_layer: str, slip: str):
-    """Tension, then the curvatures of ``KAPPAS`` in turn; yields (zone record, problem, Newton
-    iterations so far)."""
+def bend(
+    cable: Cable,
+    length: float,
+    tension: float,
+    same_layer: str,
+    slip: str,
+    kappas: tuple[float, ...] = KAPPAS,
+):
+    """Tension, then the curvatures ``kappas`` (1/m) in turn; yields (zone record, problem,
+    Newton iterations so far)."""
     geometry = build_geometry(cable, length, 4e-3)
     problem = StrandProblem(
         geometry,
@@ -60,7 +70,7 @@ def bend(cable: Cable, length: float, tension: float, same_layer: str, slip: str
     pull = LoadStepper(problem.solver, 1e3, 1e3 / 64)  # as a run's [steps] tension and cuts
     pull.ramp(partial(setup.set, "tension"), 0.0, tension)
     bends = LoadStepper(problem.solver, KAPPAS[0], KAPPAS[0] / 64, extrapolate=True)
-    for kappa in KAPPAS:
+    for kappa in kappas:
         bends.ramp(partial(setup.set, "curvature"), setup.get("curvature"), kappa)
         cells = cell_results(problem.model, setup.direction)
         zone = setup.moment_curvature(cells, problem.solver.unconstrained_residual())
@@ -91,7 +101,15 @@ def onset(shares: list[list[float]]) -> str:
     return "/".join(out) or "–"
 
 
-def row(name: str, same_layer: str, slip: str, length: float | None) -> list[str]:
+def row(
+    name: str,
+    same_layer: str,
+    slip: str,
+    length: float | None,
+    kappas: tuple[float, ...] = KAPPAS,
+) -> list[str]:
+    """The table's row of strand ``name`` under ``slip`` and ``same_layer``, bent through
+    ``kappas`` (a start of ``KAPPAS``; the rest of the row's moments "–")."""
     cable, default_length, tension = strands()[name]
     length = length or default_length
     _, ei_max = bending_stiffness_bounds(cable)
@@ -100,7 +118,7 @@ def row(name: str, same_layer: str, slip: str, length: float | None) -> list[str
     cells, slope, closed, effort, shares = [], "", "", 0, []
     t0 = time.perf_counter()
     try:
-        for zone, problem, its in bend(cable, length, tension, same_layer, slip):
+        for zone, problem, its in bend(cable, length, tension, same_layer, slip, kappas):
             k, M, effort = zone.curvature, zone.moment_zone_middle, its
             if not cells:
                 slope = f"{M / k / ei_max:.3f}"
@@ -128,12 +146,16 @@ def row(name: str, same_layer: str, slip: str, length: float | None) -> list[str
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("strand", nargs="*", default=["19", "cardinal"], choices=list(strands()))
-    parser.add_argument("--same-layer", nargs="*", default=["off", "nominal", "packed"])
-    parser.add_argument("--slip", nargs="*", default=["surface", "centreline"])
-    parser.add_argument("--length", type=float, help="span, m (default: the strand's)")
-    args = parser.parse_args()
+    cli = parser(__doc__, "the 1+6+12 over 0.1 m, surface slip, packed layers, to 0.01 1/m")
+    cli.add_argument("strand", nargs="*", default=["19", "cardinal"], choices=list(strands()))
+    cli.add_argument("--same-layer", nargs="*", default=["off", "nominal", "packed"])
+    cli.add_argument("--slip", nargs="*", default=["surface", "centreline"])
+    cli.add_argument("--length", type=float, help="span, m (default: the strand's)")
+    args = cli.parse_args()
+    kappas = KAPPAS
+    if args.quick:
+        name, length, slip, same_layer, kappas = QUICK
+        args.strand, args.length, args.slip, args.same_layer = [name], length, [slip], [same_layer]
     print(stamp())
     head = [
         "strand",
@@ -151,7 +173,8 @@ def main() -> None:
         for slip in args.slip:
             for same_layer in args.same_layer:
                 print(
-                    table([row(name, same_layer, slip, args.length)], head, head=False), flush=True
+                    table([row(name, same_layer, slip, args.length, kappas)], head, head=False),
+                    flush=True,
                 )
 
 

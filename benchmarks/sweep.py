@@ -1,6 +1,7 @@
 """A sweep of lateral amplitudes from one tensioned state against the same runs made separately.
 
-Run: .venv/bin/python benchmarks/sweep.py [length_m] [n_amplitudes]   (default 0.25 m, 10)
+Run: .venv/bin/python benchmarks/sweep.py [length_m] [n_amplitudes] [--quick]   (default 0.25 m,
+10; --quick: 0.1 m, 2 amplitudes, one leg to +A)
 
 Both sides run the Cardinal case (all outputs but the figures) with the cycle ±A at A = 0.1 … 1
 × 1 kN: the sweep (``[load] sweep``) builds the strand and tensions it once, then restores that
@@ -13,12 +14,12 @@ import strand  # noqa: F401
 
 # isort: split
 
-import sys
 import time
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
-from harness import stamp
+from harness import parser, stamp
 
 from strand.app.case import load_case
 from strand.app.run import run_case, run_sweep
@@ -26,10 +27,10 @@ from strand.app.run import run_case, run_sweep
 ROOT = Path("results/benchmark_sweep")
 
 
-def main(length: float = 0.25, n: int = 10) -> None:
+def main(length: float = 0.25, n: int = 10, extra: Sequence[str] = ()) -> None:
     print(f"stamp: {stamp()}\n")
     amplitudes = [round(1000.0 * (k + 1) / n, 6) for k in range(n)]
-    settings = [f"mesh.length={length}", "output.plots=false"]
+    settings = [f"mesh.length={length}", "output.plots=false", *extra]
     sink = open("/dev/null", "w")  # noqa: SIM115
     t0 = time.perf_counter()
     case = load_case(None, [*settings, f"load.sweep={amplitudes}"])
@@ -68,6 +69,12 @@ def main(length: float = 0.25, n: int = 10) -> None:
 if __name__ == "__main__":
     from strand.beam.parallel import serial_only
 
+    cli = parser(__doc__, "0.1 m, 2 amplitudes, one leg to +A")
+    cli.add_argument("length", nargs="?", type=float, default=0.25, help="m (default 0.25)")
+    cli.add_argument("n", nargs="?", type=int, default=10, help="amplitudes (default 10)")
+    args = cli.parse_args()
     serial_only("this benchmark (benchmarks/parallel.py measures distributed runs)")
-    args = sys.argv[1:]
-    main(float(args[0]) if args else 0.25, int(args[1]) if len(args) > 1 else 10)
+    if args.quick:
+        main(0.1, 2, ["load.cycle=[1.0]"])
+    else:
+        main(args.length, args.n)

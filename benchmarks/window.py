@@ -20,15 +20,15 @@ import strand  # noqa: F401  (before petsc4py: the wheel's MPI; a variant's own 
 
 # isort: split
 
+import argparse
 import os
 import subprocess
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from harness import peak_mib, print_result, run_variants, stamp, table
+from harness import parser, peak_mib, print_result, run_variants, stamp, table
 
 ROOT = Path("results/benchmark_window")
 #: the window: tension and the first leg; no field series, checkpoints, figures or histories
@@ -302,20 +302,20 @@ def main(names: list[str], quick: bool, ranks: int) -> None:
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    quick = "--quick" in args
-    ranks = 2
-    if "--ranks" in args:
-        ranks = int(args[args.index("--ranks") + 1])
-        del args[args.index("--ranks") : args.index("--ranks") + 2]
-    args = [a for a in args if a != "--quick"]
-    if args[:1] == ["--one"]:
-        measured = run_variant(args[1], quick)
+    cli = parser(__doc__, "0.1 m to 1 kN")
+    cli.add_argument(
+        "variants", nargs="*", metavar="variant", help="named in VARIANTS (none: DEFAULT_RUN's)"
+    )
+    cli.add_argument("--ranks", type=int, default=2, help="MPI ranks per variant (default 2)")
+    cli.add_argument("--one", help=argparse.SUPPRESS)  # a variant's own process
+    args = cli.parse_args()
+    if args.one:
+        measured = run_variant(args.one, args.quick)
         from mpi4py import MPI
 
         print_result(measured, MPI.COMM_WORLD)
     else:
-        unknown = [a for a in args if a not in VARIANTS]
+        unknown = [a for a in args.variants if a not in VARIANTS]
         if unknown:
-            raise SystemExit(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
-        main(args or DEFAULT_RUN, quick, ranks)
+            cli.error(f"unknown variant(s) {unknown}; choose from {list(VARIANTS)}")
+        main(args.variants or DEFAULT_RUN, args.quick, args.ranks)

@@ -64,7 +64,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from harness import peak_mib, stamp, table
+from harness import parser, peak_mib, stamp, table
 
 #: the runs' folders and logs (``quick/`` under it for ``--quick``)
 ROOT = Path("results/benchmark_wire_count")
@@ -532,27 +532,26 @@ if __name__ == "__main__":
         from strand.beam.parallel import serial_only
 
         serial_only("this benchmark (it launches its 2-rank runs itself)")
-        parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-        parser.add_argument("--quick", action="store_true", help="7 and 19 wires over 0.06 m")
-        parser.add_argument("--wires", type=int, nargs="+", help="strand sizes (7, 19, 37, …)")
-        parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
-        parser.add_argument("--length", type=float, help=f"span, m (default {LENGTH:g})")
-        parser.add_argument(
+        cli = parser(__doc__, "7 and 19 wires over 0.06 m, in a folder of its own")
+        cli.add_argument("--wires", type=int, nargs="+", help="strand sizes (7, 19, 37, …)")
+        cli.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+        cli.add_argument("--length", type=float, help=f"span, m (default {LENGTH:g})")
+        cli.add_argument(
             "--no-analysis", action="store_true", help="skip the probe of MUMPS's parallel analysis"
         )
-        parser.add_argument(
+        cli.add_argument(
             "--report",
             action="store_true",
             help="print the table of the runs already in the results folder",
         )
-        parser.add_argument(
+        cli.add_argument(
             "--folder",
             default="",
             help="a folder of its own (under the results folder) for the runs "
             'of these settings, e.g. steps.iteration="reuse_lu"',
         )
-        args, settings = parser.parse_known_args()
+        args, settings = cli.parse_known_args()
         unknown = [s for s in settings if "=" not in s]
         if unknown:
-            parser.error(f"unrecognised arguments {unknown}")
+            cli.error(f"unrecognised arguments {unknown}")
         main(args, settings)

@@ -12,7 +12,7 @@ serial run's. ``--quick`` runs 0.05 m (to +0.5 kN, one leg) and 0.1 m instead of
 a smoke test of the script.
 
 The 4 m span runs the tension and the first leg to 1 kN only: its time per iteration and memory
-are what a longer span costs; the whole cycle would take hours on 2 cores.
+are what a longer span costs, without the whole cycle's time.
 """
 
 import strand  # noqa: F401

@@ -28,9 +28,9 @@ output on, as a run writes them by default.
 
 One span for all, 0.2 m by default: 5 outer diameters of the 127-wire strand (39 mm), long
 enough for the LU's cost to grow in proportion to the span (``length_scaling.py``), and short
-enough for the whole table to take well under an hour on 2 cores: MUMPS's flops per LU grow as
-wires^2.5 (7 → 19 wires; nested dissection of a rod predicts 2.5), so the 127-wire runs take most
-of it.
+enough for every strand to run on the 2-core machine: MUMPS's flops per LU grow as wires^2.5
+(7 → 19 wires; nested dissection of a rod predicts 2.5), so the 127-wire runs take most of the
+time (2,267 of the 3,896 s of the stamped table's twelve runs, docs/benchmarks.md).
 
 Each (strand, ranks) runs in a process of its own (``mpirun -n 2`` from the venv for 2 ranks), so
 that its memory is its own; its folder and log are in ``results/benchmark_wire_count``. A run

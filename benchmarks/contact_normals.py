@@ -3,8 +3,10 @@
 Run: .venv/bin/python benchmarks/contact_normals.py [length_m] [P_max_N] [frictionless] [--quick]
 (default 1 m, 4300 N; --quick: 0.1 m to 500 N)
 
-Contacts use the seed paper's penalty compliance (compliance = "penalty"), as in the README table.
-For each normal (neighbour, director, frozen): 40 kN tension, then the saddle load 0 → P_max. Prints
+Contacts use the seed paper's penalty compliance (compliance = "penalty"), as in the stamped table.
+For each normal (neighbour, director, frozen), the default case's strand over the length: 40 kN
+tension, then the saddle load 0 → P_max in steps of 250 N growing to 400 N, stepped as a run steps
+them (``strand.model.programme.run_programme`` with the case's step control). Prints
 per normal the Newton iterations per step, step cuts, wall time, time per iteration, midspan
 deflection, and the error of the element's gaps against the gaps measured on the deformed
 centrelines (rms / max per interface, µm). Add "frictionless" to run without friction.
@@ -14,43 +16,55 @@ import strand  # noqa: F401
 
 # isort: split
 
+import os
 import time
 
 import numpy as np
 from harness import parser, stamp
 
-from strand.cable.description import cardinal
-from strand.cable.geometry import build_geometry
-from strand.model.contact_settings import ContactSettings
-from strand.model.problem import StrandProblem
+from strand.app.build import build_problem, step_control
+from strand.app.case import load_case
+from strand.model.programme import run_programme
 from strand.model.strand_contact import centreline_gaps
-from strand.setups import SaddleTest
-from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
+from strand.solver import LoadStepFailure, StepRecord
 
 
-def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
-    problem = StrandProblem(
-        geometry,
-        ContactSettings(normal=normal, friction=friction, compliance="penalty"),
-        NewtonOptions(atol=1e-3, max_it=12),
-        setup=SaddleTest,
+def run(length: float, normal: str, friction: bool, p_max: float) -> dict:
+    """One normal's run: its Newton iterations per step, cuts, time, deflection and gap errors."""
+    case = load_case(
+        None,
+        [
+            f"mesh.length={length}",
+            f'contact.normal="{normal}"',
+            f"contact.friction={str(friction).lower()}",
+            'contact.compliance="penalty"',
+            f"load.lateral={p_max}",
+            "load.cycle=[1.0]",
+            "steps.lateral=250",
+            "steps.lateral_max=400",
+        ],
     )
+    with open(os.devnull, "w") as sink:
+        problem, programme = build_problem(case, sink)
+    geometry = problem.geometry
+    records: dict[str, list[StepRecord]] = {"tension": [], "lateral": []}
+
+    def on_step(stage, record, position) -> None:
+        records[stage.parameter].append(record)
+
     out = {"normal": normal, "failed": ""}
     t0 = time.perf_counter()
-    tension = LoadStepper(problem.solver, 10e3, 500.0)
-    lateral = LoadStepper(problem.solver, 250.0, 15.0, max_step=400.0)
     try:
-        tension.ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
-        lateral.ramp(problem.setup.set_lateral, 0.0, p_max, "lateral")
+        run_programme(problem, programme, on_step, **step_control(case))
     except LoadStepFailure as failure:
         out["failed"] = (
             str(failure).split(":")[0]
             + f" at {problem.setup.tension:.0f} N / {problem.setup.lateral:.0f} N"
         )
     out["seconds"] = time.perf_counter() - t0
-    out["tension"] = [r.iterations for r in tension.history]
-    out["lateral"] = [r.iterations for r in lateral.history]
-    out["cuts"] = sum(r.cuts for r in tension.history + lateral.history)
+    out["tension"] = [r.iterations for r in records["tension"]]
+    out["lateral"] = [r.iterations for r in records["lateral"]]
+    out["cuts"] = sum(r.cuts for r in records["tension"] + records["lateral"])
     out["its"] = sum(out["tension"]) + sum(out["lateral"])
     out["deflection"] = problem.setup.midspan_deflection()
     out["P"] = problem.setup.lateral
@@ -62,15 +76,13 @@ def run(geometry, normal: str, friction: bool, p_max: float) -> dict:
         for m in (geometry.pairs.interface == i for i in range(4))
     ]
     out["penetration"] = -problem.pair_results().gap.min()
+    problem.solver.destroy()
     return out
 
 
 def main(length: float = 1.0, p_max: float = 4300.0, frictionless: bool = False) -> None:
     print(f"stamp: {stamp()}\n")
-    geometry = build_geometry(cardinal(), length, 4e-3)
-    results = [
-        run(geometry, n, not frictionless, p_max) for n in ("neighbour", "director", "frozen")
-    ]
+    results = [run(length, n, not frictionless, p_max) for n in ("neighbour", "director", "frozen")]
     print(
         f"Cardinal L = {length} m, T = 40 kN, saddle 0 → {p_max:.0f} N, "
         f"{'frictionless' if frictionless else 'friction on'}"

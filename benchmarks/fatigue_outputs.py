@@ -3,7 +3,8 @@
 Run: .venv/bin/python benchmarks/fatigue_outputs.py [steps] [--length L] [--quick]
 (default 10 steps on 1 m; --quick: 2 steps on 0.1 m)
 
-Pulls the strand to 40 kN and takes one lateral step (250 N, friction on), then records that state
+Pulls the default case's strand to 40 kN and takes one lateral step (250 N, friction on), as a run
+does (``strand.model.programme.run_programme`` with the case's step control), then records that state
 ``steps`` times (default 10) with every recorder of a run, side by side, into a scratch folder:
 time per step (s) and disk per step (MB) of the fatigue histories (contact pairs with their ParaView
 index, wire sections) beside the axial-force CSV and the field series. The fatigue report's own
@@ -14,22 +15,22 @@ import strand  # noqa: F401
 
 # isort: split
 
+import os
 import tempfile
 import time
 from pathlib import Path
 
 from harness import parser, stamp
 
+from strand.app.build import build_problem, step_control
+from strand.app.case import load_case
 from strand.app.fatigue.recorders import PairHistory, WireSectionHistory
 from strand.app.recorders import AxialForceTable, FieldSeries
 from strand.app.step_records import RunStep, StepContext
-from strand.cable.description import cardinal
-from strand.cable.geometry import build_geometry
 from strand.model.cell_results import CellEvaluator, cell_results
-from strand.model.contact_settings import ContactSettings
-from strand.model.problem import StrandProblem
-from strand.setups import SaddleTest
-from strand.solver import LoadStepper, NewtonOptions
+from strand.model.programme import run_programme
+
+LATERAL = 250.0  # N, the recorded state's lateral load
 
 
 def _size(paths) -> int:
@@ -42,12 +43,18 @@ def _size(paths) -> int:
 
 def main(steps: int = 10, length: float = 1.0) -> None:
     print(f"stamp: {stamp()}\n")
-    geometry = build_geometry(cardinal(), length, 4e-3)
-    problem = StrandProblem(geometry, ContactSettings(), NewtonOptions(atol=1e-2), setup=SaddleTest)
-    LoadStepper(problem.solver, 10e3, 100.0).ramp(problem.setup.set_tension, 0.0, 40e3, "tension")
-    problem.setup.set_lateral(250.0)
-    problem.solver.solve()
-    problem.solver.commit()
+    case = load_case(
+        None,
+        [
+            f"mesh.length={length}",
+            f"load.lateral={LATERAL}",
+            "load.cycle=[1.0]",
+            f"steps.lateral={LATERAL}",
+        ],
+    )
+    with open(os.devnull, "w") as sink:
+        problem, programme = build_problem(case, sink)
+    run_programme(problem, programme, **step_control(case))  # the tension, then 250 N
     evaluator = CellEvaluator(problem.model)
     direction = problem.setup.direction
     with tempfile.TemporaryDirectory() as tmp:
@@ -74,7 +81,7 @@ def main(steps: int = 10, length: float = 1.0) -> None:
             t0 = time.perf_counter()
             cells = cell_results(problem.model, direction, evaluator)
             t_cells += time.perf_counter() - t0
-            step = RunStep(k + 1, "leg 1", "lateral", 250.0, 1.0 + k, 1, 0, 0.0, 0.0, None)
+            step = RunStep(k + 1, "leg 1", "lateral", LATERAL, 1.0 + k, 1, 0, 0.0, 0.0, None)
             ctx = StepContext(step, problem, k > 0, _cells=cells)
             for name, (r, _) in recorders.items():
                 t0 = time.perf_counter()
@@ -83,7 +90,7 @@ def main(steps: int = 10, length: float = 1.0) -> None:
         for r, _ in recorders.values():
             r.close()
         print(
-            f"Cardinal {length:g} m, 40 kN + 250 N, {steps} recorded steps (cell results: "
+            f"Cardinal {length:g} m, 40 kN + {LATERAL:g} N, {steps} recorded steps (cell results: "
             f"{t_cells / steps:.3f} s per step, shared)"
         )
         print(f"{'output':28s} {'s per step':>11s} {'MB per step':>12s}")

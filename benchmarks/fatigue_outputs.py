@@ -50,6 +50,7 @@ def main(steps: int = 10, length: float = 1.0) -> None:
             f"load.lateral={LATERAL}",
             "load.cycle=[1.0]",
             f"steps.lateral={LATERAL}",
+            f"steps.lateral_max={LATERAL}",
         ],
     )
     with open(os.devnull, "w") as sink:

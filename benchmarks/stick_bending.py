@@ -147,11 +147,14 @@ def row(
 
 def main() -> None:
     cli = parser(__doc__, "the 1+6+12 over 0.1 m, surface slip, packed layers, to 0.01 1/m")
-    cli.add_argument("strand", nargs="*", default=["19", "cardinal"], choices=list(strands()))
+    # choices are checked below: argparse checks a list default of nargs="*" against them whole
+    cli.add_argument("strand", nargs="*", default=["19", "cardinal"], help=f"of {list(strands())}")
     cli.add_argument("--same-layer", nargs="*", default=["off", "nominal", "packed"])
     cli.add_argument("--slip", nargs="*", default=["surface", "centreline"])
     cli.add_argument("--length", type=float, help="span, m (default: the strand's)")
     args = cli.parse_args()
+    if unknown := set(args.strand) - set(strands()):
+        cli.error(f"unknown strand {sorted(unknown)}: choose from {list(strands())}")
     kappas = KAPPAS
     if args.quick:
         name, length, slip, same_layer, kappas = QUICK

@@ -179,10 +179,13 @@ def row(name: str, run: dict, seconds: float, law) -> list[str]:
 
 def main() -> None:
     cli = parser(__doc__, "0.1 m to 0.02 1/m, one process")
-    cli.add_argument("states", nargs="*", default=list(STATES), choices=list(STATES))
+    # choices are checked below: argparse checks a list default of nargs="*" against them whole
+    cli.add_argument("states", nargs="*", default=list(STATES), help=f"of {list(STATES)}")
     cli.add_argument("--ranks", type=int, default=2, help="MPI ranks per state (default 2)")
     cli.add_argument("--keep", type=Path, help="keep each state's run in this folder")
     args = cli.parse_args()
+    if unknown := set(args.states) - set(STATES):
+        cli.error(f"unknown state {sorted(unknown)}: choose from {list(STATES)}")
     ranks = 1 if args.quick else args.ranks
     print(stamp())
     head = ["state", "M/κ / EI_max", *(f"M at {k:g}" for k in KAPPAS)]

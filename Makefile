@@ -2,12 +2,16 @@
 #   make run [CASE=my_case.toml] [NP=n]   the main job (default: the built-in Cardinal case) on
 #                                  NP MPI ranks (default: every core); replaces that case's
 #                                  earlier results; ARGS="--out folder" passes more options
-#   make test                      lint (ruff, mypy), then the whole test suite
+#   make check                     lint (ruff, mypy), then every test, the slow integration runs
+#                                  too; what CI runs
+# and for contributors:
+#   make test                      lint, then every test but the slow ones (a fresh clone: ≤ 5 min
+#                                  on 2 cores), the 25 slowest named
 PY := .venv/bin/python
 CASE ?= cardinal
 NP ?= $(shell nproc 2>/dev/null || echo 1)
 
-.PHONY: setup run test lint
+.PHONY: setup run test check lint
 setup:
 	@bash scripts/bootstrap.sh
 
@@ -15,7 +19,10 @@ run: setup
 	.venv/bin/mpirun -n $(NP) $(PY) -m strand.app run $(CASE) --overwrite $(ARGS)
 
 test: lint
-	$(PY) -m pytest -n auto --dist worksteal
+	$(PY) -m pytest -n auto --dist worksteal -m "not slow" --durations=25
+
+check: lint
+	$(PY) -m pytest -n auto --dist worksteal --durations=25
 
 lint: setup
 	.venv/bin/ruff check .

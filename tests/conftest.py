@@ -17,7 +17,7 @@ os.environ.setdefault("MPIR_CVAR_CH4_PROGRESS_THROTTLE", "1")
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """The slow runs first, then the tests of the session's quick run, each group in its own
-    order. ``--dist worksteal`` (``make test``) hands each worker a contiguous share and lets an
+    order. ``--dist worksteal`` (``make test``, ``make check``) hands each worker a contiguous share and lets an
     idle worker take the end of another's: the long runs then start early, one worker makes the
     quick run for all its tests, and the short tests even the workers out at the end."""
     items.sort(

@@ -65,7 +65,10 @@ def bent(cable, contact: ContactSettings, curvatures, length=0.3, tension=10e3, 
         yield setup.moment_curvature(cells, problem.solver.unconstrained_residual()), problem
 
 
-@pytest.mark.parametrize("same_layer", ["off", "packed"])
+@pytest.mark.parametrize(
+    "same_layer",
+    ["off", pytest.param("packed", marks=pytest.mark.slow)],  # packed: 22 s
+)
 def test_the_moment_is_uniform_and_equals_the_end_couples(same_layer):
     """Strand plus core strut are loaded by the end couples alone: every section of the zone
     carries the same moment, equal to the reaction couple at either end, and the section's axial

@@ -47,6 +47,7 @@ def built(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_docs_build_without_warnings_and_document_the_api(built):
     api = "".join(p.read_text() for p in (built / "api").glob("*.html"))
     for name in (
@@ -64,6 +65,7 @@ def test_docs_build_without_warnings_and_document_the_api(built):
     assert "Stick–slip bending law" in theory and "How far small sliding holds" in theory
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_the_docs_need_no_network_for_their_scripts_and_maths(built):
     """No page loads a script from elsewhere (MathJax from a CDN left the maths as raw TeX
     offline); the MathJax the pages load is in the build, with its fonts."""
@@ -83,6 +85,7 @@ def test_the_docs_need_no_network_for_their_scripts_and_maths(built):
     assert "mathjax" in theory.lower() and theory.count('class="math') >= 20
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_attribute_docs_keep_their_first_clause(built):
     """Napoleon reads "X: Y" at the start of an attribute's docstring as a type X: strand's
     ``#:`` comments are prose, and their first clause stays in the sentence (it rendered as
@@ -118,6 +121,7 @@ def test_every_module_has_an_api_page():
     assert missing == []
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_the_settings_reference_lists_every_setting_with_its_default(built):
     from strand.app.kinds import registered
     from strand.app.settings import KIND_SECTIONS, SECTIONS
@@ -145,6 +149,7 @@ def test_the_outputs_reference_names_every_file_a_run_writes():
     assert [name for name in outputs() if f"`{name}`" not in text] == []
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_every_demo_is_a_tutorial_with_its_maths(built):
     pages = built / "_generated" / "tutorials"
     for demo in sorted((ROOT / "demos").glob("demo_*.py")):
@@ -161,6 +166,7 @@ def _images(page: Path) -> list[Path]:
     ]
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_every_image_a_page_shows_is_in_the_build(built):
     shown = {page: _images(page) for page in built.rglob("*.html")}
     missing = [
@@ -174,6 +180,7 @@ def test_every_image_a_page_shows_is_in_the_build(built):
     assert committed <= {i.name for images in shown.values() for i in images}
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_every_tutorial_shows_its_figures_and_what_it_printed(built):
     """Each tutorial page shows the figures its demo draws and what its cells printed, as
     recorded (``scripts/record_figures.py``): the crossed beams' friction loop against the closed
@@ -201,6 +208,7 @@ def test_the_recorded_results_are_those_of_the_demos_as_they_are():
         assert demo_page(demo)[1] == [], demo.stem
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_the_outputs_reference_shows_every_figure_a_run_draws(built):
     """Each figure a run draws, the quick case's, beside its description."""
     from strand.app.run_files import outputs
@@ -215,6 +223,7 @@ def test_the_outputs_reference_shows_every_figure_a_run_draws(built):
         ), name
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_the_gallery_shows_every_figure_with_a_link_to_its_page(built):
     """The gallery shows every figure the docs hold, each linked to its tutorial or to its
     description in the outputs reference."""
@@ -293,6 +302,7 @@ def test_the_repository_cites_its_own_theory_pages():
     assert cited == []
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_the_forms_page_documents_what_a_law_overrides(built):
     """Every method a beam law of one's own overrides is on the forms page (autodoc drops a
     method without a docstring), with the page's "what to override" list."""
@@ -322,6 +332,7 @@ def _css_rules(css: str) -> list[tuple[set[str], dict[str, str]]]:
     return rules
 
 
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_code_cells_and_printed_lines_wrap(built):
     """Every code cell and printed output of a tutorial is a ``pre`` in a ``div.highlight``, on a
     page that loads ``strand.css``, whose rule for them wraps long lines (at 1200 px in Chromium,
@@ -418,6 +429,7 @@ def _measure_in_chromium(browser: str, page: Path, width: int = 1200) -> dict:
 
 
 @pytest.mark.slow
+@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_nothing_is_clipped_at_1200_px_in_chromium(built):
     """In a real browser (Chromium, headless, a window 1200 px wide: Debian's ``chromium``,
     ``.ci/run``), no code cell, printed output, table or formula of a tutorial is wider or taller

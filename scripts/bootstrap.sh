@@ -60,9 +60,10 @@ echo "strand setup: installing strand-cables[fenics,dev] into .venv"
 "$venv/bin/python" -m pip uninstall --quiet --yes strand >/dev/null 2>&1 || true
 pip_quiet() { "$venv/bin/python" -m pip install --quiet "$@" 2>&1 | grep -v "is ignored: it is neither" || true; }
 pip_quiet --upgrade pip
-# --no-compile: Python compiles the modules a run imports when it first imports them; compiling
-# every installed one ahead took 17 of the install's 45 s on a fresh clone (2026-11-29)
-pip_quiet --no-compile -e "$root[fenics,dev]"
+# byte-compiled here, once: without it (pip --no-compile) every fresh interpreter the tests start
+# compiled what it imports again where PYTHONDONTWRITEBYTECODE is set (a fresh clone's make test:
+# setup 17 s shorter, pytest 33 s longer; 2026-11-29)
+pip_quiet -e "$root[fenics,dev]"
 # `import dolfinx` before `import strand`: the wheel's MPI library loaded first (the module's
 # docstring says how)
 site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"

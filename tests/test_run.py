@@ -276,3 +276,19 @@ def test_progress_weights_share_the_programme_also_when_the_cycle_stays_at_zero(
         legs = [Stage(f"leg {i}", "lateral", 4.3e3 * c, 250.0, 4.0) for i, c in enumerate(targets)]
         weights = LoadProgramme((tension, *legs), "lateral").weights()
         assert weights == pytest.approx(expected)
+
+
+def test_a_failed_runs_effort_line_counts_the_failed_steps_attempts(tmp_path):
+    """The FAILED line's iterations and LUs hold the attempts of the step that failed (no step
+    record does), so that its time per iteration is the run's."""
+    from strand.app.run_result import RunResult
+    from strand.app.summary import effort_line
+    from strand.solver import StepRecord
+
+    steps = (StepRecord("tension", 100.0, 4, [1.0], 1.0, 0, 0, factorisations=4),)
+    ran = dict(folder=tmp_path, steps=steps, failure="no convergence", seconds=30.0)
+    before = effort_line(RunResult(**ran))
+    after = effort_line(RunResult(**ran, failed_step_effort=(56, 60)))
+    assert before.startswith("FAILED: 1 steps, 4 Newton iterations (+ 0 in failed attempts")
+    assert after.startswith("FAILED: 1 steps, 4 Newton iterations (+ 56 in failed attempts")
+    assert "64 LUs" in after and "(0.50 s per iteration" in after

@@ -129,10 +129,17 @@ def test_unreachable_step_stops_with_clear_message_and_keeps_last_state():
     M = np.pi * S["EI"]
     written = []
     stepper = LoadStepper(case.solver, first_step=0.5, min_step=0.1, on_step=written.append)
+    solves = []  # every attempt's Newton solve
+    solve = case.solver.solve
+    case.solver.solve = lambda: solves.append(solve()) or solves[-1]
     with pytest.raises(LoadStepFailure, match=r"roll-up: no convergence from 0 towards") as e:
         stepper.ramp(
             lambda lam: setattr(case.moment, "value", [0, 0, lam * M]), 0.0, 1.0, "roll-up"
         )
+    # the failure carries what its attempts cost, which no step record holds
+    assert len(solves) >= 3 and not any(r.converged for r in solves)
+    assert e.value.iterations == sum(r.iterations for r in solves)
+    assert e.value.factorisations == sum(r.factorisations for r in solves) > 0
     assert str(e.value).endswith("The problem holds the state of the last converged load, 0.")
     assert "written" not in str(e.value)  # the library writes nothing, and says nothing of it
     assert written == []  # nothing converged, nothing reported as converged

@@ -56,6 +56,8 @@ class RunResult:
     peak_w: npt.NDArray[np.float64] | None = None
     failure: str = ""  # why the run stopped early ("" if it did not)
     interrupted: bool = False  # stopped by the user (Ctrl-C)
+    #: the Newton iterations and LUs of the attempts of the step that failed ((0, 0) if none)
+    failed_step_effort: tuple[int, int] = (0, 0)
     warnings: tuple[str, ...] = ()  # e.g. beyond small sliding
     seconds: float = 0.0
     setup_seconds: float = 0.0

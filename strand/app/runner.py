@@ -269,6 +269,7 @@ class Recording:
             peak_w=keys.peak_w,
             failure=outcome.failure,
             interrupted=outcome.interrupted,
+            failed_step_effort=(outcome.lost_iterations, outcome.lost_factorisations),
             warnings=tuple(self.warnings),
             setup_seconds=setup_seconds,
             output_timings=self.output_timings,
@@ -290,6 +291,9 @@ class Outcome:
 
     failure: str = ""
     interrupted: bool = False
+    #: the Newton iterations and LUs of the failed step's attempts (``LoadStepFailure``)
+    lost_iterations: int = 0
+    lost_factorisations: int = 0
 
 
 def _warn_of_tension(case: Case, warnings: list[str], stream) -> None:
@@ -378,7 +382,11 @@ def _take_programme(
         outcome = Outcome(f"{stop} {_written(recording.folder)}", interrupted=True)
         print(f"strand: stopped: {outcome.failure}", file=stream, flush=True)
     except LoadStepFailure as failure:
-        outcome = Outcome(f"{failure} {_written(recording.folder)}")
+        outcome = Outcome(
+            f"{failure} {_written(recording.folder)}",
+            lost_iterations=failure.iterations,
+            lost_factorisations=failure.factorisations,
+        )
         print(f"strand: step failed: {outcome.failure}", file=stream, flush=True)
     finally:
         problem.solver.interrupt = None

@@ -136,7 +136,14 @@ def _all_ranks_max(solver, value: float) -> float:
 class LoadStepFailure(RuntimeError):
     """A load step did not converge even after the allowed step cuts. The problem is rolled
     back to the last converged step; the library writes nothing (``on_step`` wrote what it
-    wrote), so the message says nothing of files: an application adds what it has written."""
+    wrote), so the message says nothing of files: an application adds what it has written.
+    ``iterations`` and ``factorisations``: the Newton iterations and LUs of the step's attempts
+    (no step record holds them)."""
+
+    def __init__(self, message: str, *, iterations: int = 0, factorisations: int = 0):
+        super().__init__(message)
+        self.iterations = iterations
+        self.factorisations = factorisations
 
 
 class RunInterrupted(LoadStepFailure):
@@ -314,7 +321,9 @@ class LoadStepper:
                         f"after {cuts} step cuts (increment now {step:.3g} < min_step "
                         f"{self.min_step:.3g}; last Newton: {result.reason}, "
                         f"{result.iterations} iterations, residual {result.residual:.3e}). "
-                        f"The problem holds the state of the last converged load, {current:.6g}."
+                        f"The problem holds the state of the last converged load, {current:.6g}.",
+                        iterations=failed,
+                        factorisations=lus,
                     )
         self.step = step
         return records

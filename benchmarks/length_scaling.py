@@ -63,7 +63,7 @@ def main(lengths: list[float], extra: list[str]) -> None:
     )
     for L, r, seconds, lu, memory, unknowns in rows:
         its = max(r.iterations, 1)
-        failed = sum(s.failed_iterations for s in r.steps)
+        failed = r.failed_iterations
         print(
             f"{L:6.2f} {unknowns:9d} {len(r.steps):6d} {r.iterations:5d} {failed:7d} "
             f"{seconds:9.1f} {r.timings['solve'] / its:6.3f} {100 * lu / r.timings['solve']:8.0f} % "

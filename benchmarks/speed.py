@@ -86,7 +86,7 @@ def run_variant(name: str, quick: bool) -> dict:
         "seconds": seconds,
         "steps": len(result.steps),
         "iterations": result.iterations,
-        "failed_iterations": sum(s.failed_iterations for s in result.steps),
+        "failed_iterations": result.failed_iterations,
         "cuts": sum(s.cuts for s in result.steps),
         "lu": lu["count"],
         "lu_seconds": lu["time"],

@@ -217,7 +217,7 @@ def worker(wires: int, length: float, folder: Path, settings: list[str]) -> None
             "setup_seconds": result.setup_seconds,
             "steps": len(result.steps),
             "iterations": result.iterations,
-            "failed_iterations": sum(s.failed_iterations for s in result.steps),
+            "failed_iterations": result.failed_iterations,
             "cuts": sum(s.cuts for s in result.steps),
             "solve_seconds": result.timings["solve"],
             "output_seconds": result.timings["output"],

@@ -56,7 +56,8 @@ class RunResult:
     peak_w: npt.NDArray[np.float64] | None = None
     failure: str = ""  # why the run stopped early ("" if it did not)
     interrupted: bool = False  # stopped by the user (Ctrl-C)
-    #: the Newton iterations and LUs of the attempts of the step that failed ((0, 0) if none)
+    #: the Newton iterations and LUs of the attempts after the last converged step of a run that
+    #: failed or was interrupted there ((0, 0) if none): no step record holds them
     failed_step_effort: tuple[int, int] = (0, 0)
     warnings: tuple[str, ...] = ()  # e.g. beyond small sliding
     seconds: float = 0.0
@@ -77,7 +78,18 @@ class RunResult:
 
     @property
     def iterations(self) -> int:
+        """Newton iterations of the converged attempts."""
         return sum(s.iterations for s in self.steps)
+
+    @property
+    def failed_iterations(self) -> int:
+        """Newton iterations of the attempts that failed, those after the last step included."""
+        return sum(s.failed_iterations for s in self.steps) + self.failed_step_effort[0]
+
+    @property
+    def factorisations(self) -> int:
+        """LU factorisations, those of the attempts after the last step included."""
+        return sum(s.factorisations for s in self.steps) + self.failed_step_effort[1]
 
     @property
     def cycle_steps(self) -> list[RunStep]:

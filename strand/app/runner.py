@@ -291,7 +291,8 @@ class Outcome:
 
     failure: str = ""
     interrupted: bool = False
-    #: the Newton iterations and LUs of the failed step's attempts (``LoadStepFailure``)
+    #: the Newton iterations and LUs of the attempts after the last converged step
+    #: (``LoadStepFailure``, ``RunInterrupted``)
     lost_iterations: int = 0
     lost_factorisations: int = 0
 
@@ -379,7 +380,12 @@ def _take_programme(
                 **step_control(recording.case),
             )
     except RunInterrupted as stop:
-        outcome = Outcome(f"{stop} {_written(recording.folder)}", interrupted=True)
+        outcome = Outcome(
+            f"{stop} {_written(recording.folder)}",
+            interrupted=True,
+            lost_iterations=stop.iterations,
+            lost_factorisations=stop.factorisations,
+        )
         print(f"strand: stopped: {outcome.failure}", file=stream, flush=True)
     except LoadStepFailure as failure:
         outcome = Outcome(

@@ -50,11 +50,8 @@ def summarize(case: Case, result: RunResult, problem, kind_lines: Sequence[str])
 def effort_line(result: RunResult) -> str:
     """The outcome, steps, Newton iterations (converged and failed, the attempts of a step
     that failed included), wall times and folder."""
-    its = result.iterations
-    lost, lost_lus = result.failed_step_effort
-    failed = sum(s.failed_iterations for s in result.steps) + lost
+    its, failed, lus = result.iterations, result.failed_iterations, result.factorisations
     cuts = sum(s.cuts for s in result.steps)
-    lus = sum(s.factorisations for s in result.steps) + lost_lus
     outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
     per_iteration = result.seconds / max(its + failed, 1)
     held = [s.stabilisation for s in result.steps if s.stabilisation]

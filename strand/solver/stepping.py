@@ -137,8 +137,8 @@ class LoadStepFailure(RuntimeError):
     """A load step did not converge even after the allowed step cuts. The problem is rolled
     back to the last converged step; the library writes nothing (``on_step`` wrote what it
     wrote), so the message says nothing of files: an application adds what it has written.
-    ``iterations`` and ``factorisations``: the Newton iterations and LUs of the step's attempts
-    (no step record holds them)."""
+    ``iterations`` and ``factorisations``: the Newton iterations and LUs of the attempts made
+    since the last converged step (no step record holds them)."""
 
     def __init__(self, message: str, *, iterations: int = 0, factorisations: int = 0):
         super().__init__(message)
@@ -241,7 +241,9 @@ class LoadStepper:
             if self.solver.stop_requested():
                 raise RunInterrupted(
                     f"{stage}: interrupted by the user at {current:.6g} (target {end:.6g}). "
-                    "The problem holds the state of that last converged load."
+                    "The problem holds the state of that last converged load.",
+                    iterations=failed,
+                    factorisations=lus,
                 )
             trial = current + sign * min(step, abs(end - current))
             set_load(trial)

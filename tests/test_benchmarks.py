@@ -107,8 +107,9 @@ def _layer_states(done: subprocess.CompletedProcess, folder: Path) -> None:
 
 
 def _freed_memory(done: subprocess.CompletedProcess, folder: Path) -> None:
-    """The same deflections to round-off (malloc's policy changes no arithmetic; measured 0 m
-    on 1 rank, 2.5e-18 m on 2)."""
+    """glibc's defaults beside freed memory kept, and the same deflections to round-off (malloc's
+    policy changes no arithmetic; measured 0 m on 1 rank, 2.5e-18 m on 2)."""
+    assert re.search(r"^glibc defaults +[\d.]+ +[1-9]\d* ", done.stdout, re.M), done.stdout
     gap = re.search(r"largest difference (\S+) m", done.stdout)
     assert gap and float(gap.group(1)) <= 1e-12
 
@@ -116,6 +117,11 @@ def _freed_memory(done: subprocess.CompletedProcess, folder: Path) -> None:
 def _wire_count(done: subprocess.CompletedProcess, folder: Path) -> None:
     """The table's own stamp line."""
     assert re.search(r"Wire count: \d{4}-\d\d-\d\d \d\d:\d\d, commit \w+", done.stdout)
+
+
+def _stick_bending(done: subprocess.CompletedProcess, folder: Path) -> None:
+    """Its row says so when a run stops (``stopped: …``): none did."""
+    assert " stopped: " not in done.stdout, done.stdout
 
 
 def _newton_iteration(done: subprocess.CompletedProcess, folder: Path) -> None:
@@ -208,6 +214,7 @@ QUICK = {
     "stick_bending.py": Quick(
         r"\| strand \| slip \| same layer \| estimate \| M/κ / EI_max \| .*",
         r"\| 1\+6\+12, 0\.1 m, 10 kN \| surface \| packed \| \d\.\d{3} \| \d\.\d{3} \| .*",
+        check=_stick_bending,
     ),
     "sweep.py": Quick(
         r" +A \(N\) +sweep steps/its +alone steps/its +sweep s +alone s",

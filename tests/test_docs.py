@@ -429,7 +429,6 @@ def _measure_in_chromium(browser: str, page: Path, width: int = 1200) -> dict:
 
 
 @pytest.mark.slow
-@pytest.mark.slow  # the Sphinx build they share takes ~20 s
 def test_nothing_is_clipped_at_1200_px_in_chromium(built):
     """In a real browser (Chromium, headless, a window 1200 px wide: Debian's ``chromium``,
     ``.ci/run``), no code cell, printed output, table or formula of a tutorial is wider or taller

@@ -148,6 +148,7 @@ def test_checkpoints_are_written_as_the_run_goes_and_bad_ones_refused(seven, tmp
     assert code == 2 and err.count("\n") == 1 and "cannot read the checkpoint" in err
 
 
+@pytest.mark.slow  # 10 s on a fresh clone
 def test_a_sweep_cycles_each_amplitude_from_one_tensioned_state_as_separate_runs_would(
     seven, tmp_path
 ):

@@ -152,6 +152,7 @@ def test_tension_matches_the_fibre_model_when_contacts_are_stiff():
         )
 
 
+@pytest.mark.slow  # 11–13 s on a fresh clone
 def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
     """`strand compare`: both contact models run the same case into their own folders; on a short
     1+6 strand (sliding of micrometres) their deflections agree within 0.5 % and their wire axial

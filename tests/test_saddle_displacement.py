@@ -115,6 +115,7 @@ def test_the_force_controlled_test_at_the_loads_found_gives_the_displacements_ba
     assert float(cycle(own)[-1]["deflection_m"]) == pytest.approx(DELTA, rel=5e-3)
 
 
+@pytest.mark.slow  # 11–12 s on a fresh clone
 def test_plus_and_minus_deflections_need_opposite_loads(up, case_file):
     """The 1+6 and its set-up are their own image by a half turn about the strand axis (six
     wires: a helix handedness is kept by a rotation), which maps a deflection +δ on −δ: from the
@@ -173,6 +174,7 @@ def test_y_b_is_reached_at_the_clamp_distance(case_file, tmp_path):
     assert "Y_b reached 0.200 mm peak-to-peak at 89 mm from the clamp" in stream.getvalue()
 
 
+@pytest.mark.slow  # 8–12 s on a fresh clone
 def test_a_sweep_of_y_b_amplitudes(case_file):
     """``[load] sweep`` under yb control: one member per amplitude (``yb_<A>``), each reaching
     its own Y_b; sweep.csv gives the amplitude in m and the peak saddle load, which grows with

@@ -32,8 +32,10 @@ from strand.analytical import StickSlipLaw, stick_bending_estimate
 from strand.analytical.fibre import bending_stiffness_bounds
 from strand.cable.description import Cable, cardinal
 from strand.cable.geometry import build_geometry
+from strand.contact.element import SLIP
 from strand.model.cell_results import cell_results
 from strand.model.contact_settings import ContactSettings
+from strand.model.layer_states import SAME_LAYER
 from strand.model.problem import StrandProblem
 from strand.setups.bending import UniformBendingTest
 from strand.solver import LoadStepFailure, LoadStepper, NewtonOptions
@@ -152,11 +154,20 @@ def main() -> None:
     cli.add_argument("--same-layer", nargs="*", default=["off", "nominal", "packed"])
     cli.add_argument("--slip", nargs="*", default=["surface", "centreline"])
     cli.add_argument("--length", type=float, help="span, m (default: the strand's)")
+    given = cli.parse_args([])  # the defaults, to tell what was given
     args = cli.parse_args()
-    if unknown := set(args.strand) - set(strands()):
-        cli.error(f"unknown strand {sorted(unknown)}: choose from {list(strands())}")
+    for option, allowed in (("strand", strands()), ("same_layer", SAME_LAYER), ("slip", SLIP)):
+        if unknown := set(getattr(args, option)) - set(allowed):
+            cli.error(f"unknown {option} {sorted(unknown)}: choose from {list(allowed)}")
     kappas = KAPPAS
     if args.quick:
+        mixed = [
+            o
+            for o in ("strand", "same_layer", "slip", "length")
+            if getattr(args, o) != getattr(given, o)
+        ]
+        if mixed:
+            cli.error(f"--quick runs its own strand and settings: drop {', '.join(mixed)}")
         name, length, slip, same_layer, kappas = QUICK
         args.strand, args.length, args.slip, args.same_layer = [name], length, [slip], [same_layer]
     print(stamp())

@@ -24,22 +24,26 @@ OLD = 'old: int = "one"\n'  # the error the baseline holds
 NEW = "new: str = 2\n"
 
 
+def _mypy(folder: Path) -> str:
+    """mypy's report on ``folder``'s module.py, with this project's settings."""
+    return subprocess.run(
+        [str(MYPY), "--no-incremental", "--config-file", str(ROOT / "pyproject.toml"), "module.py"],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+    ).stdout
+
+
 def _check(tmp_path: Path, source: str, baseline: str) -> subprocess.CompletedProcess[str]:
     """``make lint``'s pipe, mypy into mypy-baseline filter, on ``source`` against
     ``baseline``."""
     (tmp_path / "module.py").write_text(source)
     (tmp_path / "baseline.txt").write_text(baseline)
-    mypy = subprocess.run(
-        [str(MYPY), "--no-incremental", "--config-file", str(ROOT / "pyproject.toml"), "module.py"],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-    )
     return subprocess.run(
         [str(BASELINE), "filter", "--config", str(ROOT / "pyproject.toml")]
         + ["--baseline-path", "baseline.txt", "--no-colors"],
         cwd=tmp_path,
-        input=mypy.stdout,
+        input=_mypy(tmp_path),
         capture_output=True,
         text=True,
     )
@@ -50,17 +54,11 @@ def baseline(tmp_path_factory: pytest.TempPathFactory) -> str:
     """The baseline of a module with the one old error, as ``mypy-baseline sync`` writes it."""
     folder = tmp_path_factory.mktemp("sync")
     (folder / "module.py").write_text(OLD)
-    mypy = subprocess.run(
-        [str(MYPY), "--no-incremental", "--config-file", str(ROOT / "pyproject.toml"), "module.py"],
-        cwd=folder,
-        capture_output=True,
-        text=True,
-    )
     subprocess.run(
         [str(BASELINE), "sync", "--config", str(ROOT / "pyproject.toml")]
         + ["--baseline-path", "baseline.txt"],
         cwd=folder,
-        input=mypy.stdout,
+        input=_mypy(folder),
         check=True,
         capture_output=True,
         text=True,

@@ -1,7 +1,7 @@
 """The registry of a run's outputs: each a name, how to make its recorder from the run (``Run``)
 and the files it writes, with what each holds (the folder's ``README.txt``).
 
-``runner.case_recorders`` makes the recorders of every registered output, in the order
+``recording.case_recorders`` makes the recorders of every registered output, in the order
 registered (a ``make`` returns None where the case does not ask for its output); the folder's
 ``README.txt`` describes the files from here (``run_files.outputs``), those of the outputs the
 run writes itself at its end too (the case, the summary, the fatigue report and the figures:

@@ -6,7 +6,13 @@ import pytest
 
 from strand.contact.friction_laws import Mindlin, coulomb_return, tangential_stiffness
 from strand.contact.hertz import compliance, crossed_cylinders, mindlin_ratio, point_coefficient
-from strand.contact.normal_laws import HertzLineLaw, HertzPointLaw, normal_force
+from strand.contact.normal_laws import (
+    CubicOnset,
+    HertzLineLaw,
+    HertzPointLaw,
+    PenaltyLaw,
+    normal_force,
+)
 
 K_N, MU, G_LIM = 5e7, 0.5, 5e-6
 
@@ -155,6 +161,40 @@ def test_hertz_line_law_matches_the_two_cylinder_formula():
     assert law.force(np.array([-delta + law.START]))[0][0] + law.offset[0] == pytest.approx(
         q, rel=1e-9
     )
+
+
+@pytest.mark.parametrize("kind", ["penalty", "line"])
+def test_cubic_onset_is_c1_exact_beyond_its_width_and_stores_its_energy(kind):
+    """The cubic rejoins the law at ε with its value and slope, leaves it alone beyond, is softer
+    within and monotone; dp/dg matches differences; ``stiffness(p)`` inverts it; its energy is
+    ½Δp²/k of the force it leaves out, Δp = kδ(1 − δ/ε)² against a penalty law k."""
+    n, eps = 6, 1e-6
+    c = compliance(np.full(n, E_AL), NU_AL)
+    law = (
+        PenaltyLaw(K_N)
+        if kind == "penalty"
+        else HertzLineLaw(np.full(n, 1.688e-3), np.full(n, 1.688e-3), c, c, np.full(n, 4e-3))
+    )
+    onset = CubicOnset(law, eps)
+    g = -np.array([0.0, 1e-7, eps / 3, 0.9 * eps, 1.5 * eps, 5e-6])
+    p, dp = onset.force(g)
+    p_law, dp_law = law.force(g)
+    np.testing.assert_array_equal(p[4:], p_law[4:])  # exact beyond ε
+    assert p[0] == 0.0 and np.all(np.diff(p) > 0) and np.all(p[1:4] < p_law[1:4])
+    at = np.full(n, -eps)
+    np.testing.assert_allclose(onset.force(at * (1 - 1e-12))[0], law.force(at)[0], rtol=1e-9)
+    np.testing.assert_allclose(onset.force(at * (1 - 1e-12))[1], law.force(at)[1], rtol=1e-6)
+    h = 1e-12
+    fd = (onset.force(g + h)[0] - onset.force(g - h)[0]) / (2 * h)
+    np.testing.assert_allclose(dp[1:], fd[1:], rtol=1e-5)
+    np.testing.assert_allclose(onset.stiffness(p)[1:], -dp[1:], rtol=1e-8)
+    energy = onset.energy(g)
+    assert energy[0] == 0.0 and np.all(energy[1:4] > 0.0) and np.all(energy[4:] == 0.0)
+    if kind == "penalty":
+        d = -g[1:4]
+        np.testing.assert_allclose(energy[1:4], (K_N * d * (1 - d / eps) ** 2) ** 2 / (2 * K_N))
+    with pytest.raises(ValueError, match="point"):
+        CubicOnset(HertzPointLaw(np.full(n, 1e9)), eps)
 
 
 def test_mindlin_stick_stiffness():

@@ -21,6 +21,7 @@ from strand.app.case import case_from_dict
 from strand.app.case_toml import cable_table
 from strand.app.run import run_case
 from strand.cable.description import cardinal
+from strand.contact.normal_laws import CubicOnset, SmoothOnset
 from strand.solver import LoadStepFailure, Stabiliser
 from strand_cases import fd_tangent
 
@@ -74,12 +75,49 @@ def test_the_springs_add_their_force_energy_and_exact_tangent(compliance, line):
     assert np.array_equal(f1, f0) and np.array_equal(K1, K0)
 
 
+def test_a_held_onset_changes_the_law_within_its_width_only():
+    """While held with ``onset``, a law with a C¹ onset (the same-layer pairs') is the cubic
+    onset of that width: its forces are ``CubicOnset``'s, the tangent matches finite
+    differences, the energy adds what the cubic leaves out; a pair pressed past the width feels
+    the law as it is; released, the group is the unstabilised one exactly."""
+    group, w = _moved_pair("hertz", True)
+    group.normal_law = SmoothOnset(group.normal_law)
+    f0, K0 = group.evaluate(w, True)
+    gap = group.state.gap.copy()
+    within = gap > -8e-6
+    assert within.sum() == 3  # three pairs press by 3–5 µm, one by 11 µm
+    group.stabilise(K_S, onset=8e-6)
+    f, K = group.evaluate(w, True)
+    cubic = CubicOnset(group.normal_law.law, 8e-6)
+    p = group.state.force
+    np.testing.assert_allclose(p, cubic.force(gap)[0], rtol=1e-12)
+    assert np.all(p[within] < cubic.law.force(gap)[0][within])  # softer within the width
+    assert np.array_equal(p[~within], cubic.law.force(gap)[0][~within])  # the law beyond
+    K_fd = fd_tangent(group, w)[:, :, group.dofs]
+    assert np.abs(K - K_fd).max() <= 2e-6 * max(np.abs(K).max(), 1.0)
+    held = group.stabilisation_energy
+    group.stabilise(K_S)  # the springs alone
+    group.evaluate(w, True)
+    assert held == pytest.approx(group.stabilisation_energy + cubic.energy(gap).sum(), rel=1e-12)
+    group.stabilise(K_S, onset=1e-7)  # narrower than the approach: the law's own forces
+    group.evaluate(w, True)
+    np.testing.assert_allclose(
+        group.state.force, CubicOnset(cubic.law, 1e-7).force(gap)[0], rtol=1e-12
+    )
+    np.testing.assert_allclose(group.state.force, cubic.law.force(gap)[0], rtol=1e-12)
+    group.stabilise(None)
+    f1, K1 = group.evaluate(w, True)
+    assert np.array_equal(f1, f0) and np.array_equal(K1, K0)
+
+
 def test_a_negative_spring_is_refused():
     group, _ = _moved_pair("penalty", False)
     with pytest.raises(ValueError, match="stiffness must be >= 0"):
         group.stabilise(-1.0)
     with pytest.raises(ValueError, match="must be > 0"):
         Stabiliser([group], lambda: 1.0, MPI.COMM_SELF, stiffness=0.0)
+    with pytest.raises(ValueError, match="onset 0.0 m, must be > 0"):
+        Stabiliser([group], lambda: 1.0, MPI.COMM_SELF, onset=0.0)
 
 
 class Held:
@@ -87,10 +125,12 @@ class Held:
 
     def __init__(self):
         self.stiffness = None
+        self.onset = None
         self.stabilisation_energy = 0.25
 
-    def stabilise(self, stiffness):
+    def stabilise(self, stiffness, onset=None):
         self.stiffness = stiffness
+        self.onset = onset
 
 
 class HeldSolver(PathSolver):
@@ -112,14 +152,17 @@ def test_a_step_whose_cuts_are_exhausted_is_held_from_its_first_increment_then_r
     """A step that fails however cut (the next cut would go under ``min_step``) is tried again
     held, from the increment it was first tried at; the springs are off from the next step on."""
     held = Held()
-    stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
+    stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S, onset=1e-6)
     solver = HeldSolver(held, fails=lambda lam: lam <= 0.25)
+    onsets = []
+    solver.solve = lambda solve=solver.solve: onsets.append(held.onset) or solve()
     _, records = ramp(
         solver, 0.0, 1.0, first_step=0.25, min_step=0.01, growth=1.0, stabiliser=stabiliser
     )
     assert [r.load for r in records] == pytest.approx([0.25, 0.5, 0.75, 1.0])
     assert records[0].cuts == 4  # 0.25 → 0.0156: the cut to 0.0078 would go under min_step
     assert solver.states == [None] * 5 + [K_S] + [None] * 3
+    assert onsets == [None] * 9  # the springs sufficed: no second hold
     assert [r.stabilisation for r in records] == pytest.approx([0.025, 0, 0, 0])
     assert held.stiffness is None and not stabiliser.on
 
@@ -141,6 +184,32 @@ def test_a_step_is_cut_as_without_springs_and_held_only_once_cuts_are_exhausted(
     first = records.index(stabilised[0])
     assert records[first].load - records[first - 1].load == pytest.approx(0.015625)
     assert held.stiffness is None and not stabiliser.on
+
+
+def test_a_step_the_springs_cannot_hold_is_held_again_with_the_wider_onset():
+    """Where the held attempts' cuts are exhausted too, the step is tried once more from its
+    first increment, held with the wider onset as well; without an onset it fails there."""
+    held = Held()
+    stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S, onset=1e-6)
+    solver = HeldSolver(held, fails=lambda lam: lam <= 0.25)
+    solver.fails = lambda lam, predicted: held.onset is None and lam <= 0.25
+    onsets = []
+    solver.solve = lambda solve=solver.solve: onsets.append(held.onset) or solve()
+    kwargs = dict(first_step=0.25, min_step=0.01, growth=1.0)
+    _, records = ramp(solver, 0.0, 1.0, stabiliser=stabiliser, **kwargs)
+    assert [r.load for r in records] == pytest.approx([0.25, 0.5, 0.75, 1.0])
+    assert records[0].cuts == 8  # 4 unheld, 4 held by the springs alone, each to 0.0156
+    assert onsets == [None] * 10 + [1e-6] + [None] * 3
+    assert solver.states[:11] == [None] * 5 + [K_S] * 6
+    assert held.stiffness is None and held.onset is None and not stabiliser.widened
+    with pytest.raises(LoadStepFailure, match="no convergence from 0 "):
+        ramp(
+            HeldSolver(Held(), fails=lambda lam: lam <= 0.25),
+            0.0,
+            1.0,
+            stabiliser=Stabiliser([Held()], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S),
+            **kwargs,
+        )
 
 
 def test_without_a_stabiliser_the_same_ramp_fails():

@@ -103,12 +103,17 @@ def newton_options(case: Case) -> NewtonOptions:
 
 def step_control(case: Case) -> dict:
     """``run_programme``'s step control from ``[steps]``: the error controller (``control =
-    "error"``, aiming at ``error_tolerance``) or None, ``retry``, and the contact springs of
-    ``stabilise`` (N/m; None: off)."""
+    "error"``, aiming at ``error_tolerance``) or None, ``retry``, the contact springs of
+    ``stabilise`` (N/m; None: off) and the same-layer onset while they hold, ``held_onset`` (m;
+    None: as it is)."""
     s = case.steps
     controller = ErrorControl(tol=s.error_tolerance) if s.control == "error" else None
-    stabilisation = s.stabilise if s.stabilise > 0 else None
-    return {"controller": controller, "retry": s.retry, "stabilisation": stabilisation}
+    return {
+        "controller": controller,
+        "retry": s.retry,
+        "stabilisation": s.stabilise if s.stabilise > 0 else None,
+        "held_onset": s.held_onset if s.held_onset > 0 else None,
+    }
 
 
 def setup_and_programme(case: Case, kind: SetupKind):

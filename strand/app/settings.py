@@ -205,6 +205,16 @@ class StepSettings(WithKinds):
         unit="N/m",
         sign="zero_is_off",
     )
+    held_onset: float = setting(
+        1e-6,
+        "A second hold, where the springs' own cuts are exhausted too: the same-layer "
+        "pairs' normal law rises from first touch over this approach by a cubic, exact beyond "
+        "it (CubicOnset), so that neighbours of a packed layer at nanometre gaps stop opening "
+        "and closing every iteration; the force it leaves out is counted with the springs' "
+        "energy. 0: no second hold.",
+        unit="m",
+        sign="zero_is_off",
+    )
     by_kind: Mapping[str, Any] = field(default=_NO_KINDS, hash=False)
 
 

@@ -29,7 +29,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .friction_laws import FrictionLaw
-from .normal_laws import NormalLaw
+from .normal_laws import CubicOnset, NormalLaw, SmoothOnset
 
 __all__ = ["ContactState", "FrictionHistory", "PairKinematics", "PairGroup", "tangential_part"]
 
@@ -157,6 +157,7 @@ class PairGroup:
         #: at the last evaluation (J), and the gaps they hold to (m: those of the last commit,
         #: or of the first evaluation, at the initial unknowns, before any)
         self._stabilisation: Array | None = None
+        self._held_law: CubicOnset | None = None  # the normal law while held (``stabilise``)
         self.stabilisation_energy = 0.0
         self._g_old: Array | None = None
         self.history = FrictionHistory.zeros(n_pairs)
@@ -176,16 +177,20 @@ class PairGroup:
         self._tangents = 0  # tangent evaluations of this step
         self._choices: dict[str, Array] = {}
 
-    def stabilise(self, stiffness: Array | float | None) -> None:
+    def stabilise(self, stiffness: Array | float | None, onset: float | None = None) -> None:
         """Hold every pair's relative motion since the step's start, its slip Δg_T and its
         change of gap Δg_N, open pairs' as well, with a spring of ``stiffness`` (N/m, per pair
         or one for all; None: off): residual Sᵀ k Δg_T + k Δg_N ∂g/∂q, tangent k SᵀS +
-        k ∂g/∂q ⊗ ∂g/∂q (the gap's curvature times k Δg_N, a few mN, is left out). A
-        stabilisation of a step that would not converge (``strand.solver.stabilisation``),
-        not a law: nothing of it is committed."""
+        k ∂g/∂q ⊗ ∂g/∂q (the gap's curvature times k Δg_N, a few mN, is left out). ``onset``
+        (m): while held, a normal law with a C¹ onset (``SmoothOnset``) takes this wider one
+        instead, exact beyond it (``CubicOnset``). A stabilisation of a step that would not
+        converge (``strand.solver.stabilisation``), not a law: nothing of it is committed."""
+        self._held_law = None
         if stiffness is None:
             self._stabilisation = None
             return
+        if onset is not None and isinstance(self.normal_law, SmoothOnset):
+            self._held_law = CubicOnset(self.normal_law.law, onset)
         k = np.broadcast_to(np.asarray(stiffness, float), (len(self),)).copy()
         if np.any(k < 0):
             raise ValueError("stabilise: the stiffness must be >= 0")
@@ -217,7 +222,8 @@ class PairGroup:
     def evaluate(self, w: Array, jacobian: bool = True):
         W = w[self.stencils]  # (P, k, 6)
         kin = self._kinematics(W, jacobian)
-        p, dp_dg = self.normal_law.force(kin.gap)
+        normal_law = self.normal_law if self._held_law is None else self._held_law
+        p, dp_dg = normal_law.force(kin.gap)
         G = kin.gradient
         if self._g_old is None:  # the first evaluation: the initial unknowns' gaps
             self._g_old = kin.gap.copy()
@@ -232,7 +238,7 @@ class PairGroup:
         if self.friction or self._stabilisation is not None:
             S, dq = kin.slip()
         if self._stabilisation is not None:
-            self._add_stabilisation(S, dq, kin.gap - self._g_old, G, f, K)
+            self._add_stabilisation(S, dq, kin.gap, G, f, K)
         if self.friction:
             choices = self._choose(S, dq, jacobian)
             ft = self.friction_law.terms(
@@ -243,7 +249,7 @@ class PairGroup:
                 self._p_old,
                 self._t_old,
                 self._n_old,
-                normal=self.normal_law,
+                normal=normal_law,
                 jacobian=jacobian,
                 history=self._law_history | choices,
             )
@@ -259,12 +265,13 @@ class PairGroup:
         return f, K
 
     def _add_stabilisation(
-        self, S: Array, dq: Array, dg: Array, G: Array, f: Array, K: Array | None
+        self, S: Array, dq: Array, gap: Array, G: Array, f: Array, K: Array | None
     ) -> None:
-        """Add the springs of ``stabilise`` on the slip S dq and the change of gap dg (gap
-        gradient G) to the residual f and tangent K, in place."""
+        """Add the springs of ``stabilise`` on the slip S dq and the change of gap since the
+        step's start (gap gradient G) to the residual f and tangent K, in place."""
         k = self._stabilisation
-        assert k is not None  # only called while the springs are on
+        assert k is not None and self._g_old is not None  # only while the springs are on
+        dg = gap - self._g_old
         slip = np.einsum("pij,pj->pi", S, dq)
         m = S.shape[2]
         f[:, :m] += np.einsum("pij,pi->pj", S, k[:, None] * slip)
@@ -272,8 +279,10 @@ class PairGroup:
         if K is not None:
             K[:, :m, :m] += k[:, None, None] * (S.transpose(0, 2, 1) @ S)
             K += k[:, None, None] * (G[:, :, None] * G[:, None, :])
-        energy = np.einsum("p,pi,pi->", k, slip, slip) + np.dot(k, dg * dg)
-        self.stabilisation_energy = 0.5 * float(energy)
+        energy = 0.5 * (np.einsum("p,pi,pi->", k, slip, slip) + np.dot(k, dg * dg))
+        if self._held_law is not None:  # the force the wider onset leaves out, as an energy
+            energy += self._held_law.energy(gap).sum()
+        self.stabilisation_energy = float(energy)
 
     def commit(self) -> None:
         """Accept the last evaluated state (the converged one) as the history."""

@@ -11,7 +11,9 @@ approach) and dp/dg; a pair counts as closed in the tangent for g ≤ 0 (pairs s
   tributary length ℓ (given by ``contact_terms``);
 * ``HertzPointLaw``: crossed cylinders, p = c δ^{3/2} (``strand.contact.hertz``);
 * ``HertzLineLaw``: parallel-axis cylinders, the approach of the axes under a line load;
-* ``SmoothOnset``: any of them made C¹ at first touch.
+* ``SmoothOnset``: any of them made C¹ at first touch (shifted by ε of approach);
+* ``CubicOnset``: any of them made C¹ at first touch by a cubic over the first ε of approach,
+  exact beyond (the held attempts' law, ``strand.solver.stabilisation``).
 
 The friction laws that go with them: ``strand.contact.friction_laws``.
 """
@@ -32,6 +34,7 @@ __all__ = [
     "HertzPointLaw",
     "HertzLineLaw",
     "SmoothOnset",
+    "CubicOnset",
     "normal_force",
 ]
 
@@ -255,3 +258,65 @@ class SmoothOnset(NormalLaw):
             np.sqrt(2 * k0 * p / eps),
             self.law.stiffness(np.maximum(p - k0 * eps / 2, 0.0)),
         )
+
+
+@dataclass(frozen=True)
+class CubicOnset(NormalLaw):
+    """``law`` made C¹ at first touch by a cubic over the first ``width`` ε of approach δ = −g,
+    and exact beyond: p = aδ² + bδ³ on 0 ≤ δ < ε, with p(ε) = p_law(ε), p'(ε) = p'_law(ε).
+
+    Unlike ``SmoothOnset`` it moves no force of a pair pressed by more than ε; within ε the force
+    is softer than the law's (for a law p ≈ kδ, by k δ (1 − δ/ε)² at most, 4kε/27 at δ = ε/3).
+    For a law that is linear or concave near touch (penalty, Hertz line contact) the stiffness
+    p' = δ(2a + 3bδ) stays positive over the cubic; laws stiffening faster from zero (Hertz point
+    contact) are refused. ``energy(g)`` measures the force it leaves out as an energy: what a
+    held attempt reports beside its springs' (``strand.solver.stabilisation``).
+    """
+
+    law: NormalLaw
+    width: float = 1e-6  # m
+
+    def __post_init__(self):
+        if not self.width > 0:
+            raise ValueError(f"CubicOnset: width {self.width} m, must be > 0")
+        if isinstance(self.law, HertzPointLaw):
+            raise ValueError("CubicOnset: a Hertz point law stiffens from zero; use SmoothOnset")
+
+    def _ends(self, n: int) -> tuple[Array, Array, Array, Array]:
+        """p(ε), p'(ε) of the law and the cubic's a, b (n,)."""
+        eps = self.width
+        p_e, dp_e = self.law.force(np.full(n, -eps))
+        k_e = -dp_e
+        b = (k_e * eps - 2 * p_e) / eps**3
+        a = (3 * p_e - k_e * eps) / eps**2
+        return p_e, k_e, a, b
+
+    def force(self, g: Array) -> tuple[Array, Array]:
+        d = -np.asarray(g, float)
+        p_law, dp_law = self.law.force(-d)
+        _, _, a, b = self._ends(len(d))
+        x = np.clip(d, 0.0, self.width)
+        ramp = d < self.width
+        p = np.where(ramp, x * x * (a + b * x), p_law)
+        dp = np.where(ramp, -x * (2 * a + 3 * b * x), dp_law)
+        return p, dp
+
+    def stiffness(self, p: Array) -> Array:
+        p = np.maximum(np.asarray(p, float), 0.0)
+        p_e, k_e, a, b = self._ends(len(p))
+        # the cubic's δ for p < p(ε): bisection on the monotone cubic (vectorised)
+        lo, hi = np.zeros_like(p), np.full_like(p, self.width)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            below = mid * mid * (a + b * mid) < p
+            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+        x = 0.5 * (lo + hi)
+        return np.where(p < p_e, x * (2 * a + 3 * b * x), self.law.stiffness(p))
+
+    def energy(self, g: Array) -> Array:
+        """½ Δp²/k per pair (J, ≥ 0): the energy the law's stiffness k = p'_law stores under the
+        force Δp = p_law − p the cubic leaves out; zero beyond ε, where the force is the law's."""
+        p, _ = self.force(g)
+        p_law, dp_law = self.law.force(np.asarray(g, float))
+        k = np.where(dp_law < 0.0, -dp_law, np.inf)
+        return 0.5 * (p_law - p) ** 2 / k

@@ -128,12 +128,15 @@ def run_programme(
     controller: ErrorControl | None = None,
     retry: bool = False,
     stabilisation: float | None = None,
+    held_onset: float | None = None,
 ) -> None:
     """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
     record, position)`` after every committed step. ``start``: continue from a position (the
     problem already in the state reached there: ``strand.model.checkpoint``). ``controller`` and
     ``retry``: ``LoadStepper``'s, for every stage (default: growth after easy solves, no
-    retry). Raises
+    retry). ``stabilisation``: the contact springs (N/m) of a step whose cuts are exhausted,
+    ``held_onset`` the width (m) of the same-layer pairs' onset while held (``Stabiliser``).
+    Raises
     ``LoadStepFailure`` when a step cannot be cut small enough to converge (the last converged
     state stays in the problem)."""
     setup = problem.setup
@@ -146,6 +149,7 @@ def run_programme(
             model.strain_energy,
             model.comm,
             stabilisation,
+            onset=held_onset,
             newton=problem.solver,
         )
     for index, stage in enumerate(programme.stages):

@@ -11,9 +11,16 @@ converged without springs converges as before. Nothing of the springs is committ
 them, so the forces they held at the converged step are handed to the friction that the closed
 pairs then carry.
 
+Where the springs' own cuts are exhausted too, a second hold (``onset``) gives the normal laws
+with a C¹ onset (the same-layer pairs') a wider one, a cubic over the first ``onset`` of
+approach, exact beyond (``strand.contact.normal_laws.CubicOnset``): the neighbours of a packed
+layer that sit within nanometres of touching then stop opening and closing every iteration (the
+chatter that held 1 m of Cardinal with its ring vaulted at 500 N, design notes 2026-11-29).
+
 What they did is reported as Abaqus reports ALLSD beside ALLIE: the springs' energy at the
-converged step, ½ Σ k (|Δg_T|² + Δg_N²), over the strain energy of the beams (a fraction; Abaqus' users
-aim at a few per cent at most). Units: N/m, J.
+converged step, ½ Σ k (|Δg_T|² + Δg_N²), and in a second hold the force the wider onset leaves
+out, as an energy ½ Σ Δp²/k_N (``CubicOnset.energy``), over the strain energy of the beams (a
+fraction; Abaqus' users aim at a few per cent at most). Units: N/m, m, J.
 """
 
 from __future__ import annotations
@@ -38,35 +45,56 @@ class Stabilised(Protocol):
 
     stabilisation_energy: float
 
-    def stabilise(self, stiffness: float | None) -> None: ...
+    def stabilise(self, stiffness: float | None, onset: float | None = None) -> None: ...
 
 
 @dataclass
 class Stabiliser:
     """Springs of ``stiffness`` (N/m per pair) on ``groups``, switched on for the
-    attempts of a step that follow a failed one; ``strain_energy()`` the beams' strain energy
-    (J, summed over the ranks of ``comm``)."""
+    attempts of a step whose cuts are exhausted, then with the wider ``onset`` (m) too
+    (``escalate``); ``strain_energy()`` the beams' strain energy (J, summed over the ranks of
+    ``comm``)."""
 
     groups: Sequence[Stabilised]
     strain_energy: Callable[[], float]
     comm: MPI.Comm
     stiffness: float = 1e4
+    #: the width (m) of the C¹ onset of the normal laws that have one (``SmoothOnset``: the
+    #: same-layer pairs') in a second hold, once the springs' own cuts are exhausted too, exact
+    #: beyond it (``CubicOnset``; None: no second hold)
+    onset: float | None = None
     #: the solver whose attempts the springs hold: patient while they are on (no stall test,
     #: ``LAST_RESORT_ITERATIONS``), as the held attempts are the step's last
     newton: Patient | None = None
     on: bool = False
+    #: the springs hold with the wider onset (``escalate``)
+    widened: bool = False
 
     def __post_init__(self):
         if not self.stiffness > 0:
             raise ValueError(f"Stabiliser: stiffness {self.stiffness} N/m, must be > 0")
+        if self.onset is not None and not self.onset > 0:
+            raise ValueError(f"Stabiliser: onset {self.onset} m, must be > 0")
 
-    def switch(self, on: bool) -> None:
-        """Springs on (at ``stiffness``) or off on every group."""
-        self.on = on
+    def switch(self, on: bool, widened: bool = False) -> None:
+        """Springs on (at ``stiffness``; ``widened``: with the wider ``onset`` too) or off on
+        every group."""
+        self.on, self.widened = on, on and widened
         for g in self.groups:
-            g.stabilise(self.stiffness if on else None)
+            g.stabilise(self.stiffness if on else None, self.onset if self.widened else None)
         if self.newton is not None:
             self.newton.last_resort(on)
+
+    def escalate(self) -> bool:
+        """The next hold for a step whose cuts are exhausted: the springs, then (their cuts
+        exhausted too) the springs with the wider ``onset``; False when there is none left."""
+        if not self.on:
+            self.switch(True)
+        elif self.onset is not None and not self.widened:
+            self.switch(True, widened=True)
+        else:
+            return False
+        return True
 
     def energy(self) -> float:
         """The springs' energy at the last evaluation, all ranks (J)."""

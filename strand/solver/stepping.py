@@ -176,9 +176,10 @@ class LoadStepper:
         stabiliser: a ``Stabiliser``: the contact springs, a last resort for a step whose
             cuts are exhausted (the next would go under ``min_step``): the step is tried again
             from the increment it was first tried at, with the springs on, and cut again if
-            need be. They are switched off when it is committed, and their energy fraction
-            recorded (``StepRecord.stabilisation``). A run that converges without them is
-            unchanged, step for step. None (the default): none.
+            need be; those cuts exhausted too, once more with the wider onset as well
+            (``Stabiliser.escalate``). They are switched off when it is committed, and their
+            energy fraction recorded (``StepRecord.stabilisation``). A run that converges
+            without them is unchanged, step for step. None (the default): none.
     """
 
     def __init__(
@@ -308,10 +309,9 @@ class LoadStepper:
                 predict = self.extrapolate
                 if (
                     self.stabiliser is not None
-                    and not self.stabiliser.on
                     and step / 2 < self.min_step
-                ):
-                    self.stabiliser.switch(True)  # cuts exhausted: the step again, held
+                    and self.stabiliser.escalate()
+                ):  # cuts exhausted: the step again, held (then held harder)
                     step = first_try
                     continue
                 step /= 2

@@ -193,8 +193,16 @@ def test_cubic_onset_is_c1_exact_beyond_its_width_and_stores_its_energy(kind):
     if kind == "penalty":
         d = -g[1:4]
         np.testing.assert_allclose(energy[1:4], (K_N * d * (1 - d / eps) ** 2) ** 2 / (2 * K_N))
-    with pytest.raises(ValueError, match="point"):
-        CubicOnset(HertzPointLaw(np.full(n, 1e9)), eps)
+    with pytest.raises(ValueError, match="stiffens too fast"):
+        CubicOnset(_Quartic(), eps).force(g)
+
+
+class _Quartic:
+    """p = c δ⁴: p(ε) = ε p'(ε)/4, past what a monotone cubic onset can join (ε p'(ε)/3)."""
+
+    def force(self, g):
+        d = np.maximum(-g, 0.0)
+        return 1e26 * d**4, -4e26 * d**3
 
 
 def test_mindlin_stick_stiffness():

@@ -86,13 +86,13 @@ def test_a_held_onset_changes_the_law_within_its_width_only():
     gap = group.state.gap.copy()
     within = gap > -8e-6
     assert within.sum() == 3  # three pairs press by 3–5 µm, one by 11 µm
-    group.stabilise(K_S, onset=8e-6)
+    assert group.stabilise(K_S, onset=8e-6)  # a law with an onset: widened
     f, K = group.evaluate(w, True)
-    cubic = CubicOnset(group.normal_law.law, 8e-6)
+    cubic = CubicOnset(group.normal_law, 8e-6)  # on the run's own law
     p = group.state.force
     np.testing.assert_allclose(p, cubic.force(gap)[0], rtol=1e-12)
-    assert np.all(p[within] < cubic.law.force(gap)[0][within])  # softer within the width
-    assert np.array_equal(p[~within], cubic.law.force(gap)[0][~within])  # the law beyond
+    assert np.all(p[within] < group.normal_law.force(gap)[0][within])  # softer within
+    assert np.array_equal(p[~within], group.normal_law.force(gap)[0][~within])  # the law beyond
     K_fd = fd_tangent(group, w)[:, :, group.dofs]
     assert np.abs(K - K_fd).max() <= 2e-6 * max(np.abs(K).max(), 1.0)
     held = group.stabilisation_energy
@@ -108,6 +108,8 @@ def test_a_held_onset_changes_the_law_within_its_width_only():
     group.stabilise(None)
     f1, K1 = group.evaluate(w, True)
     assert np.array_equal(f1, f0) and np.array_equal(K1, K0)
+    crossings, _ = _moved_pair("hertz", False)  # a Hertz point law: no onset to widen
+    assert not crossings.stabilise(K_S, onset=8e-6)
 
 
 def test_a_negative_spring_is_refused():
@@ -131,6 +133,7 @@ class Held:
     def stabilise(self, stiffness, onset=None):
         self.stiffness = stiffness
         self.onset = onset
+        return onset is not None
 
 
 class HeldSolver(PathSolver):
@@ -210,6 +213,14 @@ def test_a_step_the_springs_cannot_hold_is_held_again_with_the_wider_onset():
             stabiliser=Stabiliser([Held()], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S),
             **kwargs,
         )
+    rigid = Held()  # a group with no law to widen: no second hold, its attempts not wasted
+    rigid.stabilise = lambda stiffness, onset=None: Held.stabilise(rigid, stiffness) and False
+    solver = HeldSolver(rigid, fails=lambda lam: lam <= 0.25)
+    solver.fails = lambda lam, predicted: lam <= 0.25  # held or not
+    stabiliser = Stabiliser([rigid], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S, onset=1e-6)
+    with pytest.raises(LoadStepFailure, match="after 9 step cuts"):
+        ramp(solver, 0.0, 1.0, stabiliser=stabiliser, **kwargs)
+    assert len(solver.states) == 10 and not stabiliser.on
 
 
 def test_without_a_stabiliser_the_same_ramp_fails():

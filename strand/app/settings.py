@@ -211,7 +211,7 @@ class StepSettings(WithKinds):
         "pairs' normal law rises from first touch over this approach by a cubic, exact beyond "
         "it (CubicOnset), so that neighbours of a packed layer at nanometre gaps stop opening "
         "and closing every iteration; the force it leaves out is counted with the springs' "
-        "energy. 0: no second hold.",
+        "energy. 0: no second hold (none either with stabilise = 0).",
         unit="m",
         sign="zero_is_off",
     )

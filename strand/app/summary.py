@@ -56,7 +56,7 @@ def effort_line(result: RunResult) -> str:
     per_iteration = result.seconds / max(its + failed, 1)
     held = [s.stabilisation for s in result.steps if s.stabilisation]
     stabilised = (
-        f", {len(held)} step{'s' * (len(held) > 1)} stabilised (contact springs' energy at "
+        f", {len(held)} step{'s' * (len(held) > 1)} stabilised (stabilisation energy at "
         f"most {max(held):.1e} of the strain energy)"
         if held
         else ""

@@ -177,24 +177,27 @@ class PairGroup:
         self._tangents = 0  # tangent evaluations of this step
         self._choices: dict[str, Array] = {}
 
-    def stabilise(self, stiffness: Array | float | None, onset: float | None = None) -> None:
+    def stabilise(self, stiffness: Array | float | None, onset: float | None = None) -> bool:
         """Hold every pair's relative motion since the step's start, its slip Δg_T and its
         change of gap Δg_N, open pairs' as well, with a spring of ``stiffness`` (N/m, per pair
         or one for all; None: off): residual Sᵀ k Δg_T + k Δg_N ∂g/∂q, tangent k SᵀS +
         k ∂g/∂q ⊗ ∂g/∂q (the gap's curvature times k Δg_N, a few mN, is left out). ``onset``
-        (m): while held, a normal law with a C¹ onset (``SmoothOnset``) takes this wider one
-        instead, exact beyond it (``CubicOnset``). A stabilisation of a step that would not
-        converge (``strand.solver.stabilisation``), not a law: nothing of it is committed."""
+        (m): while held, a normal law with a C¹ onset (``SmoothOnset``) rises over this wider
+        one, the law itself beyond (``CubicOnset``). A stabilisation of a step that would not
+        converge (``strand.solver.stabilisation``), not a law: the springs are not committed,
+        but a step converged under them commits the forces it converged to (the onset's as
+        well). Returns whether the wider onset is on (False for a law without an onset)."""
         self._held_law = None
         if stiffness is None:
             self._stabilisation = None
-            return
+            return False
         if onset is not None and isinstance(self.normal_law, SmoothOnset):
-            self._held_law = CubicOnset(self.normal_law.law, onset)
+            self._held_law = CubicOnset(self.normal_law, onset)
         k = np.broadcast_to(np.asarray(stiffness, float), (len(self),)).copy()
         if np.any(k < 0):
             raise ValueError("stabilise: the stiffness must be >= 0")
         self._stabilisation = k
+        return self._held_law is not None
 
     @property
     def friction(self) -> bool:

@@ -7,9 +7,9 @@ stabilisation damps the relative motion of the surfaces, a ``Stabiliser`` holds 
 relative motion since the step's start, its slip Δg_T and its change of gap Δg_N (open pairs'
 as well: a vaulted ring's radial mode), with a spring k (N/m), in the attempts that follow a
 failed one, once its cuts are exhausted (``LoadStepper(stabiliser=…)``), so that a run that
-converged without springs converges as before. Nothing of the springs is committed: the next step starts without
-them, so the forces they held at the converged step are handed to the friction that the closed
-pairs then carry.
+converged without springs converges as before. The springs are not committed: the next step
+starts without them, so the forces they held at the converged step are handed to the friction
+that the closed pairs then carry (the step commits the state it converged to).
 
 Where the springs' own cuts are exhausted too, a second hold (``onset``) gives the normal laws
 with a C¹ onset (the same-layer pairs') a wider one, a cubic over the first ``onset`` of
@@ -45,7 +45,7 @@ class Stabilised(Protocol):
 
     stabilisation_energy: float
 
-    def stabilise(self, stiffness: float | None, onset: float | None = None) -> None: ...
+    def stabilise(self, stiffness: float | None, onset: float | None = None) -> bool: ...
 
 
 @dataclass
@@ -76,28 +76,31 @@ class Stabiliser:
         if self.onset is not None and not self.onset > 0:
             raise ValueError(f"Stabiliser: onset {self.onset} m, must be > 0")
 
-    def switch(self, on: bool, widened: bool = False) -> None:
+    def switch(self, on: bool, widened: bool = False) -> bool:
         """Springs on (at ``stiffness``; ``widened``: with the wider ``onset`` too) or off on
-        every group."""
-        self.on, self.widened = on, on and widened
-        for g in self.groups:
-            g.stabilise(self.stiffness if on else None, self.onset if self.widened else None)
+        every group; whether a group on any rank took the wider onset."""
+        onset = self.onset if on and widened else None
+        took = [g.stabilise(self.stiffness if on else None, onset) for g in self.groups]
+        self.on = on
+        self.widened = bool(self.comm.allreduce(any(took), op=MPI.LOR))
         if self.newton is not None:
             self.newton.last_resort(on)
+        return self.widened
 
     def escalate(self) -> bool:
         """The next hold for a step whose cuts are exhausted: the springs, then (their cuts
-        exhausted too) the springs with the wider ``onset``; False when there is none left."""
+        exhausted too) the springs with the wider ``onset``, where a group has a law to widen;
+        False when there is none left."""
         if not self.on:
             self.switch(True)
-        elif self.onset is not None and not self.widened:
-            self.switch(True, widened=True)
-        else:
-            return False
-        return True
+            return True
+        if self.onset is not None and not self.widened:
+            return self.switch(True, widened=True)
+        return False
 
     def energy(self) -> float:
-        """The springs' energy at the last evaluation, all ranks (J)."""
+        """The hold's energy at the last evaluation (the springs' and the wider onset's),
+        all ranks (J)."""
         local = sum(g.stabilisation_energy for g in self.groups) if self.on else 0.0
         return self.comm.allreduce(local, op=MPI.SUM)
 

@@ -235,6 +235,7 @@ class LoadStepper:
         cuts, failed, retries, rejections, lus = 0, 0, 0, 0, 0
         predict = self.extrapolate  # start the next attempt from the secant predictor
         w = self.solver.w.x.array
+        first_try = step  # the increment the step being taken was first tried at
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
         if resume is not None:
             step, previous = resume.step, resume.previous

@@ -12,7 +12,8 @@ outputs:
 * ``random``: split at random (``gap_seed`` 0);
 * ``ring``: packed, the steel layer a vault standing off the core (``first_layer = "ring"``);
 * ``king``: packed, on a king wire 3.40 mm thick (the cable's ``core.diameter``): the steel
-  layer's gaps open;
+  layer's gaps open; ``king-microslip``: the same with Mindlin–Deresiewicz's kink-free law
+  (``compliance = "hertz_microslip"``);
 * ``mu0.7``, ``mu1.0``: packed, the Coulomb coefficient of layers 1–3 (with the next layer out
   and between their own wires) 0.7 or 1.0 instead of the seed's 0.5; ``core0.6``: the core's
   (with layer 1) 0.6 instead of 0.3;
@@ -60,6 +61,7 @@ STATES = {
     "random": ['contact.same_layer="random"', "contact.gap_seed=0"],
     "ring": ['contact.first_layer="ring"'],
     "king": ["cable.core.diameter=3.40e-3"],
+    "king-microslip": ["cable.core.diameter=3.40e-3", 'contact.compliance="hertz_microslip"'],
     # the friction's weight: packed, with other Coulomb coefficients
     "mu0.7": [f"cable.layer.{i}.friction=0.7" for i in (1, 2, 3)],
     "mu1.0": [f"cable.layer.{i}.friction=1.0" for i in (1, 2, 3)],

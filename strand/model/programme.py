@@ -125,6 +125,7 @@ def run_programme(
     programme: LoadProgramme,
     on_step: Callable[[Stage, StepRecord, Position], None] | None = None,
     start: Position | None = None,
+    *,
     controller: ErrorControl | None = None,
     retry: bool = False,
     stabilisation: float | None = None,

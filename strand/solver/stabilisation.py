@@ -26,7 +26,7 @@ fraction; Abaqus' users aim at a few per cent at most). Units: N/m, m, J.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass, field
 from typing import Protocol
 
 from mpi4py import MPI
@@ -59,6 +59,7 @@ class Stabiliser:
     strain_energy: Callable[[], float]
     comm: MPI.Comm
     stiffness: float = 1e4
+    _: KW_ONLY
     #: the width (m) of the C¹ onset of the normal laws that have one (``SmoothOnset``: the
     #: same-layer pairs') in a second hold, once the springs' own cuts are exhausted too, exact
     #: beyond it (``CubicOnset``; None: no second hold)
@@ -66,9 +67,9 @@ class Stabiliser:
     #: the solver whose attempts the springs hold: patient while they are on (no stall test,
     #: ``LAST_RESORT_ITERATIONS``), as the held attempts are the step's last
     newton: Patient | None = None
-    on: bool = False
+    on: bool = field(default=False, init=False)
     #: the springs hold with the wider onset (``escalate``)
-    widened: bool = False
+    widened: bool = field(default=False, init=False)
 
     def __post_init__(self):
         if not self.stiffness > 0:

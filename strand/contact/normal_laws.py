@@ -301,7 +301,8 @@ class CubicOnset(NormalLaw):
             self._ends_cache[n] = (p_e, k_e, a, b)
         return self._ends_cache[n]
 
-    def force(self, g: Array) -> tuple[Array, Array]:
+    def _with_law(self, g: Array) -> tuple[Array, Array, Array, Array]:
+        """p, dp/dg and the law's own p_law, dp_law/dg at the gaps g (P,)."""
         d = -np.asarray(g, float)
         assert d.ndim == 1, "CubicOnset: gaps (P,), one per pair"
         p_law, dp_law = self.law.force(-d)
@@ -310,7 +311,10 @@ class CubicOnset(NormalLaw):
         ramp = d < self.width
         p = np.where(ramp, x * x * (a + b * x), p_law)
         dp = np.where(ramp, -x * (2 * a + 3 * b * x), dp_law)
-        return p, dp
+        return p, dp, p_law, dp_law
+
+    def force(self, g: Array) -> tuple[Array, Array]:
+        return self._with_law(g)[:2]
 
     def stiffness(self, p: Array) -> Array:
         p = np.maximum(np.asarray(p, float), 0.0)
@@ -327,7 +331,6 @@ class CubicOnset(NormalLaw):
     def energy(self, g: Array) -> Array:
         """½ Δp²/k per pair (J, ≥ 0): the energy the law's stiffness k = p'_law stores under the
         force Δp = p_law − p the cubic leaves out; zero beyond ε, where the force is the law's."""
-        p, _ = self.force(g)
-        p_law, dp_law = self.law.force(np.asarray(g, float))
+        p, _, p_law, dp_law = self._with_law(g)  # the law evaluated once
         k = np.where(dp_law < 0.0, -dp_law, np.inf)
         return 0.5 * (p_law - p) ** 2 / k

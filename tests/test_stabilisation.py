@@ -167,6 +167,7 @@ def test_a_step_whose_cuts_are_exhausted_is_held_from_its_first_increment_then_r
     assert solver.states == [None] * 5 + [K_S] + [None] * 3
     assert onsets == [None] * 9  # the springs sufficed: no second hold
     assert [r.stabilisation for r in records] == pytest.approx([0.025, 0, 0, 0])
+    assert [r.hold for r in records] == [1, 0, 0, 0]
     assert held.stiffness is None and not stabiliser.on
 
 
@@ -204,6 +205,7 @@ def test_a_step_the_springs_cannot_hold_is_held_again_with_the_wider_onset():
     assert records[0].cuts == 8  # 4 unheld, 4 held by the springs alone, each to 0.0156
     assert onsets == [None] * 10 + [1e-6] + [None] * 3
     assert solver.states[:11] == [None] * 5 + [K_S] * 6
+    assert [r.hold for r in records] == [2, 0, 0, 0]
     assert held.stiffness is None and held.onset is None and not stabiliser.widened
     with pytest.raises(LoadStepFailure, match="no convergence from 0 "):
         ramp(
@@ -270,6 +272,7 @@ def test_a_vaulted_ring_starts_only_when_stabilised_and_the_springs_leave_no_tra
         summaries[k] = out.getvalue()
         effort = next(line for line in summaries[k].splitlines() if line.startswith("done"))
         assert f"energy at most {max(held):.1e} of the strain energy" in effort
+        assert "with the wider onset" not in effort and {s.hold for s in r.steps} == {0, 1}
     stiff, soft = (runs[k].tension_end for k in (1e4, 1e3))
     scale = np.abs(stiff.axial).max()
     assert np.abs(stiff.axial - soft.axial).max() <= 1e-3 * scale

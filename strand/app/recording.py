@@ -27,7 +27,7 @@ from .outputs import Run, registered_outputs
 from .recorders import BendingTable, KeyStates, SlipTable, StepTable
 from .run_result import RunResult, Start
 from .settings import Case
-from .step_records import Recorder, RunStep, StepContext
+from .step_records import HOLDS, Recorder, RunStep, StepContext
 from .summary import wire_stress_line, yield_warnings
 
 if TYPE_CHECKING:
@@ -203,11 +203,12 @@ class Recording:
             rec.failed_iterations,
             rec.factorisations,
             stabilisation=rec.stabilisation,
+            hold=rec.hold,
         )
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
         if rec.stabilisation:
-            extra += f"  stabilised: {rec.stabilisation:.1e} of the strain energy"
+            extra += f"  {HOLDS[rec.hold]}: {rec.stabilisation:.1e} of the strain energy"
         self.progress.step(stage, value, rec.iterations, rec.cuts, extra)
         if stage.parameter == "tension" and value == stage.target:
             self.tensioned(ctx)

@@ -21,7 +21,10 @@ if TYPE_CHECKING:
     from ..model.programme import Position
     from ..setups import TestSetup
 
-__all__ = ["RunStep", "StepBending", "SlipFractions", "StepContext", "Recorder"]
+__all__ = ["HOLDS", "RunStep", "StepBending", "SlipFractions", "StepContext", "Recorder"]
+
+#: what carried a step, by ``RunStep.hold``
+HOLDS = ("not held", "held by the springs", "held by the springs and the wider onset")
 
 
 @dataclass(frozen=True)
@@ -47,6 +50,9 @@ class RunStep:
     #: the contact stabilisation's energy over the strain energy (0: not stabilised;
     #: ``strand.solver.Stabiliser``)
     stabilisation: float = 0.0
+    #: the hold that carried the step: 0 none, 1 the springs, 2 the springs with the wider
+    #: same-layer onset (``strand.solver.StepRecord.hold``)
+    hold: int = 0
 
 
 @dataclass(frozen=True)

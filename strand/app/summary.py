@@ -54,10 +54,12 @@ def effort_line(result: RunResult) -> str:
     cuts = sum(s.cuts for s in result.steps)
     outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
     per_iteration = result.seconds / max(its + failed, 1)
-    held = [s.stabilisation for s in result.steps if s.stabilisation]
+    held = [s for s in result.steps if s.stabilisation]
+    widened = sum(s.hold == 2 for s in held)
     stabilised = (
-        f", {len(held)} step{'s' * (len(held) > 1)} stabilised (stabilisation energy at "
-        f"most {max(held):.1e} of the strain energy)"
+        f", {len(held)} step{'s' * (len(held) > 1)} stabilised"
+        f"{f' ({widened} with the wider onset)' if widened else ''} (stabilisation energy "
+        f"at most {max(s.stabilisation for s in held):.1e} of the strain energy)"
         if held
         else ""
     )

@@ -99,6 +99,11 @@ class Stabiliser:
             return self.switch(True, widened=True)
         return False
 
+    @property
+    def level(self) -> int:
+        """The hold now on: 0 none, 1 the springs, 2 the springs with the wider onset."""
+        return 0 if not self.on else 2 if self.widened else 1
+
     def energy(self) -> float:
         """The hold's energy at the last evaluation (the springs' and the wider onset's),
         all ranks (J)."""

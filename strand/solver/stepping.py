@@ -69,6 +69,9 @@ class StepRecord:
     #: the contact stabilisation's energy over the strain energy at the converged step
     #: (``Stabiliser.fraction``); 0: the step converged without it
     stabilisation: float = 0.0
+    #: the hold that carried the step (``Stabiliser.level``): 0 none, 1 the springs, 2 the
+    #: springs with the wider onset
+    hold: int = 0
 
 
 @dataclass(frozen=True)
@@ -269,6 +272,7 @@ class LoadStepper:
                     continue
                 settling = self.settles and resume is None and not records
                 previous = None if settling else (h, dw)
+                hold = self.stabiliser.level if self.stabiliser is not None else 0
                 stabilisation = self._release()
                 self.solver.commit()
                 rec = StepRecord(
@@ -284,6 +288,7 @@ class LoadStepper:
                     rejections,
                     lus,
                     stabilisation=stabilisation,
+                    hold=hold,
                 )
                 current = trial
                 if proposal is not None:

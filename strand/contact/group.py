@@ -226,7 +226,12 @@ class PairGroup:
         W = w[self.stencils]  # (P, k, 6)
         kin = self._kinematics(W, jacobian)
         normal_law = self.normal_law if self._held_law is None else self._held_law
-        p, dp_dg = normal_law.force(kin.gap)
+        if self._held_law is None:
+            p, dp_dg = normal_law.force(kin.gap)
+            left_out = 0.0
+        else:  # the force the wider onset leaves out, as an energy, from the same evaluation
+            p, dp_dg, onset_energy = self._held_law.force_and_energy(kin.gap)
+            left_out = float(onset_energy.sum())
         G = kin.gradient
         if self._g_old is None:  # the first evaluation: the initial unknowns' gaps
             self._g_old = kin.gap.copy()
@@ -241,7 +246,7 @@ class PairGroup:
         if self.friction or self._stabilisation is not None:
             S, dq = kin.slip()
         if self._stabilisation is not None:
-            self._add_stabilisation(S, dq, kin.gap, G, f, K)
+            self._add_stabilisation(S, dq, kin.gap, G, f, K, left_out)
         if self.friction:
             choices = self._choose(S, dq, jacobian)
             ft = self.friction_law.terms(
@@ -268,10 +273,19 @@ class PairGroup:
         return f, K
 
     def _add_stabilisation(
-        self, S: Array, dq: Array, gap: Array, G: Array, f: Array, K: Array | None
+        self,
+        S: Array,
+        dq: Array,
+        gap: Array,
+        G: Array,
+        f: Array,
+        K: Array | None,
+        left_out: float = 0.0,
     ) -> None:
         """Add the springs of ``stabilise`` on the slip S dq and the change of gap since the
-        step's start (gap gradient G) to the residual f and tangent K, in place."""
+        step's start (gap gradient G) to the residual f and tangent K, in place; their energy
+        plus ``left_out`` (J: the wider onset's, ``CubicOnset.energy``) is the group's
+        ``stabilisation_energy``."""
         k = self._stabilisation
         assert k is not None and self._g_old is not None  # only while the springs are on
         dg = gap - self._g_old
@@ -283,9 +297,7 @@ class PairGroup:
             K[:, :m, :m] += k[:, None, None] * (S.transpose(0, 2, 1) @ S)
             K += k[:, None, None] * (G[:, :, None] * G[:, None, :])
         energy = 0.5 * (np.einsum("p,pi,pi->", k, slip, slip) + np.dot(k, dg * dg))
-        if self._held_law is not None:  # the force the wider onset leaves out, as an energy
-            energy += self._held_law.energy(gap).sum()
-        self.stabilisation_energy = float(energy)
+        self.stabilisation_energy = float(energy) + left_out
 
     def commit(self) -> None:
         """Accept the last evaluated state (the converged one) as the history."""

@@ -331,6 +331,11 @@ class CubicOnset(NormalLaw):
     def energy(self, g: Array) -> Array:
         """½ Δp²/k per pair (J, ≥ 0): the energy the law's stiffness k = p'_law stores under the
         force Δp = p_law − p the cubic leaves out; zero beyond ε, where the force is the law's."""
-        p, _, p_law, dp_law = self._with_law(g)  # the law evaluated once
+        return self.force_and_energy(g)[2]
+
+    def force_and_energy(self, g: Array) -> tuple[Array, Array, Array]:
+        """``force(g)`` and ``energy(g)`` from one evaluation of the law (the Hertz line law
+        inverts per pair): p, dp/dg and ½ Δp²/k (P,)."""
+        p, dp, p_law, dp_law = self._with_law(g)
         k = np.where(dp_law < 0.0, -dp_law, np.inf)
-        return 0.5 * (p_law - p) ** 2 / k
+        return p, dp, 0.5 * (p_law - p) ** 2 / k

@@ -261,6 +261,7 @@ def test_a_vaulted_ring_starts_only_when_stabilised_and_the_springs_leave_no_tra
     off = io.StringIO()
     result = run_case(case_from_dict(_ring_19(0.0)), tmp_path / "off", stream=off)
     assert result.failure and not result.steps
+    assert "'A tension that stops early'" in result.failure  # where the user is sent
     runs, summaries = {}, {}
     for k in (1e4, 1e3):
         out = io.StringIO()

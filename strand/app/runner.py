@@ -130,7 +130,7 @@ def _take_programme(
         print(f"strand: stopped: {outcome.failure}", file=stream, flush=True)
     except LoadStepFailure as failure:
         outcome = Outcome(
-            f"{failure} {_written(recording.folder)}",
+            f"{failure} {_written(recording.folder)} {STALLED}",
             lost_iterations=failure.iterations,
             lost_factorisations=failure.factorisations,
         )
@@ -139,6 +139,10 @@ def _take_programme(
         problem.solver.interrupt = None
         recording.close()
     return outcome
+
+
+#: where a user whose step failed learns what to count and what to try
+STALLED = "What stalled and what to try: docs/user-guide/running.md, 'A tension that stops early'."
 
 
 def _written(folder: Path) -> str:

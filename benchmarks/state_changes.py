@@ -237,7 +237,11 @@ def main(
 
 if __name__ == "__main__":
     cli = parser(__doc__, "the window on 0.1 m to 1 kN")
-    cli.add_argument("--case", help="a case file (default: the built-in Cardinal case)")
+    cli.add_argument(
+        "--case",
+        help="a case file (default: the built-in Cardinal case), run to the end of its first "
+        "leg with its outputs off (the window's settings over it)",
+    )
     add_settings(cli)
     cli.add_argument("--residuals", action="store_true", help="every solve's residual norms")
     cli.add_argument(

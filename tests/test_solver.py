@@ -401,3 +401,46 @@ def test_the_problem_is_dolfinx_nonlinear_problem_with_pair_couplings():
     problem.destroy()
     with pytest.raises(ValueError, match="prefix cannot be empty"):
         NonlinearProblem(beam.residual(), w, [bc], petsc_options_prefix="")
+
+
+def test_relaxation_springs_hold_the_free_dofs_and_carry_the_residual():
+    """``relax(c, ℓ)``: every free dof held to its value by c (translations) or c ℓ²
+    (rotations). Two bars clamped at x = 0, an axial force F and a moment on a tip: with the
+    springs the bar's axial equations are (K + c I) u = F (a chain: the tip moves less than
+    F L/EA), the clamped dofs stay at 0, and the springs' force D (u − 0) equals the residual
+    of the problem without them at that state; released, one more solve gives the state of
+    the problem never held."""
+    mesh, V, roots, tips = two_bars()
+    w = fem.Function(V)
+    beam = ReissnerBeam(w, CircularSection(0.01, 210e9, 0.3))
+    bc = fem.dirichletbc(np.zeros(6), roots, V)
+    F, M = 5.0e3, 2.0
+    load = NodalLoad([tips[0]], [[F, 0, 0, 0, 0, M]], factor=1.0)
+    solver = NonlinearProblem(beam.residual(), w, [bc], terms=[load])
+    c, ell = 1.0e8, 0.01
+    solver.relax(c, ell)
+    assert solver.solve().converged
+    wn = w.x.array.reshape(-1, 6)
+    assert np.all(wn[roots] == 0.0)
+    tip = wn[tips[0], 0]
+    assert 0 < tip < F * 1.0 / S["EA"]
+    # the springs' force is the residual of the problem without them, at the same state
+    free = np.ones(len(wn), bool)
+    free[roots] = False
+    plain = solver.unconstrained_residual()[free[: len(solver.unconstrained_residual())]]
+    held = np.concatenate([c * wn[free, :3].ravel(), c * ell**2 * wn[free, 3:].ravel()])
+    assert np.linalg.norm(plain) == pytest.approx(np.linalg.norm(held), rel=1e-6)
+    assert solver.relaxation_force() == pytest.approx(np.linalg.norm(held), rel=1e-6)
+    solver.relax(None)
+    assert solver.relaxation_force() == 0.0
+    assert solver.solve().converged
+    w_ref = fem.Function(V)  # the problem never held
+    beam_ref = ReissnerBeam(w_ref, CircularSection(0.01, 210e9, 0.3))
+    reference = NonlinearProblem(beam_ref.residual(), w_ref, [bc], terms=[load])
+    assert reference.solve().converged
+    np.testing.assert_allclose(w.x.array, w_ref.x.array, rtol=0, atol=1e-12)
+    assert wn[tips[0], 0] == pytest.approx(F * 1.0 / S["EA"], rel=1e-2)  # bent: a little less
+    reference.destroy()
+    with pytest.raises(ValueError, match="must be > 0"):
+        solver.relax(-1.0)
+    solver.destroy()

@@ -10,6 +10,7 @@ and their energy fraction is recorded; a step that converges without them never 
 from __future__ import annotations
 
 import io
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -22,7 +23,7 @@ from strand.app.case_toml import cable_table
 from strand.app.run import run_case
 from strand.cable.description import cardinal
 from strand.contact.normal_laws import CubicOnset, SmoothOnset
-from strand.solver import LoadStepFailure, Stabiliser
+from strand.solver import LoadStepFailure, LoadStepper, NewtonResult, Stabiliser
 from strand_cases import fd_tangent
 
 K_S = 2e4  # N/m
@@ -331,3 +332,128 @@ def test_a_last_resort_is_patient_and_the_springs_make_it_so():
     assert held.stiffness == K_S and solver.patient == [True]
     stabiliser.switch(False)
     assert held.stiffness is None and solver.patient == [True, False]
+
+
+class Fold:
+    """A one-unknown stand-in for ``NonlinearProblem`` past a buckling: R(x) = x³ − 3x − f,
+    whose tangent 3x² − 3 is negative between its folds. Its Newton fails at an iterate where
+    the tangent (with the relaxation's c) is not positive, as a line search stalls on a
+    direction that is no descent one; ``relax`` holds x to its value by c. One node: x is its
+    first dof, the others stay 0."""
+
+    def __init__(self, x: float, load: float):
+        self.w = SimpleNamespace(x=SimpleNamespace(array=np.array([x, 0, 0, 0, 0, 0.0])))
+        self._saved = self.w.x.array.copy()
+        self.load = load
+        self.held: tuple[float, float] | None = None  # (c, x_ref)
+        self.log: list[tuple[float | None, bool]] = []  # (c, converged) of every solve
+        self.norms: list[list[float]] = []  # the residuals of every solve
+        self.patient: list[bool] = []
+
+    def residual(self, x: float) -> float:
+        c, ref = self.held or (0.0, 0.0)
+        return x**3 - 3 * x - self.load + c * (x - ref)
+
+    def solve(self) -> NewtonResult:
+        x, c = float(self.w.x.array[0]), self.held[0] if self.held else 0.0
+        norms = []
+        for its in range(20):
+            r = self.residual(x)
+            norms.append(abs(r))
+            if abs(r) < 1e-12:
+                break
+            tangent = 3 * x**2 - 3 + c
+            if tangent <= 0:
+                its = -1
+                break
+            x -= r / tangent
+        converged = its >= 0 and norms[-1] < 1e-12
+        self.norms.append(norms)
+        self.w.x.array[0] = x
+        self.log.append((self.held[0] if self.held else None, converged))
+        return NewtonResult(converged, len(norms), "", norms, 0.0, len(norms))
+
+    def relax(self, stiffness, length=1.0):
+        self.held = None if stiffness is None else (stiffness, float(self.w.x.array[0]))
+
+    def relaxation_force(self) -> float:
+        c, ref = self.held
+        return abs(c * (self.w.x.array[0] - ref))
+
+    def last_resort(self, on):
+        self.patient.append(on)
+
+    def set_load(self, load):
+        self.load = load
+
+    def commit(self):
+        self._saved = self.w.x.array.copy()
+
+    def rollback(self):
+        self.w.x.array[:] = self._saved
+
+    def stop_requested(self):
+        return False
+
+
+def test_a_relaxed_solve_comes_to_rest_where_newton_cannot_start():
+    """From x = 0, between the folds of R = x³ − 3x − ½ (tangent −3), Newton fails; pseudo-
+    transient continuation (springs c from x to where the last solve left it, c = 1 too soft:
+    four times stiffer, then softer as the springs' force falls) moves x as a damped motion would, to the
+    stable root beyond the fold, 1.8100379…, where the plain Newton then converges: an
+    equilibrium of R itself, not of R with springs."""
+    fold = Fold(0.0, 0.5)
+    assert not fold.solve().converged
+    fold.w.x.array[:] = 0.0
+    stabiliser = Stabiliser([], lambda: 1.0, MPI.COMM_SELF, newton=fold, relaxation=1.0)
+    result = stabiliser.relaxed_solve()
+    root = np.roots([1, 0, -3, -0.5]).real.max()
+    assert result.converged and fold.w.x.array[0] == pytest.approx(root, rel=1e-12)
+    assert fold.log[1:3] == [(1.0, False), (4.0, True)]  # too soft, then four times stiffer
+    assert fold.log[-1] == (None, True) and fold.held is None  # the plain solve, springs off
+    assert all(c is not None for c, _ in fold.log[1:-1])
+    assert (
+        result.iterations
+        == result.factorisations
+        == sum(  # every solve's, counted
+            len(norms) for norms in fold.norms[1:]
+        )
+    )
+
+
+def test_the_relaxation_is_the_third_hold_and_leaves_nothing_held():
+    """A step that neither the cuts nor the springs (nor the wider onset) carry is solved by
+    the relaxation from its first increment: recorded as hold 3, fraction 0 (an equilibrium);
+    the next steps are plain again. Without a relaxation the same ramp fails; a stepper whose
+    solver is not the relaxation's (a displacement control) does not relax."""
+    held = Held()
+    fold = Fold(-2.0, 0.0)  # the stable root left of the folds, R' > 0
+    fold.solve()
+    fold.commit()
+    steps: list[float | None] = []
+    plain = fold.solve
+
+    def solve():  # cuts and springs fail in the fold's middle: tangent ≤ 0
+        steps.append(held.stiffness)
+        return plain()
+
+    fold.solve = solve
+    stabiliser = Stabiliser(
+        [held], lambda: 1.0, MPI.COMM_SELF, stiffness=K_S, newton=fold, relaxation=1.0
+    )
+    stepper = LoadStepper(fold, 1.0, 0.1, growth=1.0, stabiliser=stabiliser)
+    records = stepper.ramp(fold.set_load, 0.0, 3.0)
+    assert [r.load for r in records][-1] == pytest.approx(3.0)
+    holds = [r.hold for r in records]
+    assert 3 in holds and set(holds) <= {0, 3}
+    assert all(r.stabilisation == 0 for r in records)
+    jumped = holds.index(3)
+    assert records[jumped - 1].load <= 2.0 < records[jumped].load  # past the fold at f = 2
+    assert fold.w.x.array[0] == pytest.approx(np.roots([1, 0, -3, -3.0]).real.max())
+    assert not stabiliser.level and fold.held is None
+    fold = Fold(-2.0, 0.0)
+    fold.solve()
+    fold.commit()
+    without = Stabiliser([Held()], lambda: 1.0, MPI.COMM_SELF, stiffness=K_S, newton=fold)
+    with pytest.raises(LoadStepFailure):
+        LoadStepper(fold, 1.0, 0.1, growth=1.0, stabiliser=without).ramp(fold.set_load, 0, 3)

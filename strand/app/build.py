@@ -105,7 +105,7 @@ def step_control(case: Case) -> dict:
     """``run_programme``'s step control from ``[steps]``: the error controller (``control =
     "error"``, aiming at ``error_tolerance``) or None, ``retry``, the contact springs of
     ``stabilise`` (N/m; None: off) and the same-layer onset while they hold, ``held_onset`` (m;
-    None: as it is)."""
+    None: as it is), and the relaxation after them, ``relax`` (N/m; None: none)."""
     s = case.steps
     controller = ErrorControl(tol=s.error_tolerance) if s.control == "error" else None
     return {
@@ -113,6 +113,7 @@ def step_control(case: Case) -> dict:
         "retry": s.retry,
         "stabilisation": s.stabilise if s.stabilise > 0 else None,
         "held_onset": s.held_onset if s.held_onset > 0 else None,
+        "relaxation": s.relax if s.relax > 0 and s.stabilise > 0 else None,
     }
 
 

@@ -207,7 +207,9 @@ class Recording:
         )
         ctx = self.record(step, position)
         extra = step.state.progress() if ctx.cycle else " " * 14
-        if rec.stabilisation:
+        if rec.hold == 3:  # an equilibrium of the strand: nothing held
+            extra += f"  {HOLDS[rec.hold]}"
+        elif rec.hold:
             extra += f"  {HOLDS[rec.hold]}: {rec.stabilisation:.1e} of the strain energy"
         self.progress.step(stage, value, rec.iterations, rec.cuts, extra)
         if stage.parameter == "tension" and value == stage.target:

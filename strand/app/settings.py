@@ -215,6 +215,19 @@ class StepSettings(WithKinds):
         unit="m",
         sign="zero_is_off",
     )
+    relax: float = setting(
+        0.0,
+        "A third hold, where the second's cuts are exhausted too: the step solved by "
+        "pseudo-transient continuation, every free node held by a spring of this first "
+        "stiffness (× the largest wire diameter² on the rotations) to where the last solve "
+        "left it, stiffer after a failed solve, softer as the strand comes to rest, until the "
+        "step converges without it: an equilibrium of the strand itself, for a tangent that "
+        "is not positive (past a buckling; Stabiliser.relaxed_solve). 0 (the default): none; "
+        "1e5 to try it. Off by default: on 1 m of Cardinal with its ring vaulted it did not "
+        "come to rest in 100 pseudo-time steps (design notes 2026-11-29, last).",
+        unit="N/m",
+        sign="zero_is_off",
+    )
     by_kind: Mapping[str, Any] = field(default=_NO_KINDS, hash=False)
 
 

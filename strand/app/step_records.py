@@ -24,7 +24,12 @@ if TYPE_CHECKING:
 __all__ = ["HOLDS", "RunStep", "StepBending", "SlipFractions", "StepContext", "Recorder"]
 
 #: what carried a step, by ``RunStep.hold``
-HOLDS = ("not held", "held by the springs", "held by the springs and the wider onset")
+HOLDS = (
+    "not held",
+    "held by the springs",
+    "held by the springs and the wider onset",
+    "relaxed to rest",
+)
 
 
 @dataclass(frozen=True)
@@ -51,7 +56,7 @@ class RunStep:
     #: ``strand.solver.Stabiliser``)
     stabilisation: float = 0.0
     #: the hold that carried the step: 0 none, 1 the springs, 2 the springs with the wider
-    #: same-layer onset (``strand.solver.StepRecord.hold``)
+    #: same-layer onset, 3 the relaxation (``strand.solver.StepRecord.hold``)
     hold: int = 0
 
 

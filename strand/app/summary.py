@@ -54,8 +54,9 @@ def effort_line(result: RunResult) -> str:
     cuts = sum(s.cuts for s in result.steps)
     outcome = "INTERRUPTED" if result.interrupted else "FAILED" if result.failure else "done"
     per_iteration = result.seconds / max(its + failed, 1)
-    held = [s for s in result.steps if s.stabilisation]
+    held = [s for s in result.steps if s.hold in (1, 2)]
     widened = sum(s.hold == 2 for s in held)
+    relaxed = sum(s.hold == 3 for s in result.steps)
     stabilised = (
         f", {len(held)} step{'s' * (len(held) > 1)} stabilised"
         f"{f' ({widened} with the wider onset)' if widened else ''} (stabilisation energy "
@@ -63,6 +64,8 @@ def effort_line(result: RunResult) -> str:
         if held
         else ""
     )
+    if relaxed:
+        stabilised += f", {relaxed} step{'s' * (relaxed > 1)} relaxed to rest"
     return (
         f"{outcome}: {len(result.steps)} steps, {its} Newton iterations (+ {failed} in failed "
         f"attempts, {cuts} step cut{'s' * (cuts != 1)}), {lus} LUs{stabilised}, {result.seconds:.0f} s ({per_iteration:.2f} s "

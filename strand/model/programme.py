@@ -130,13 +130,16 @@ def run_programme(
     retry: bool = False,
     stabilisation: float | None = None,
     held_onset: float | None = None,
+    relaxation: float | None = None,
 ) -> None:
     """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
     record, position)`` after every committed step. ``start``: continue from a position (the
     problem already in the state reached there: ``strand.model.checkpoint``). ``controller`` and
     ``retry``: ``LoadStepper``'s, for every stage (default: growth after easy solves, no
     retry). ``stabilisation``: the contact springs (N/m) of a step whose cuts are exhausted,
-    ``held_onset`` the width (m) of the same-layer pairs' onset while held (``Stabiliser``).
+    ``held_onset`` the width (m) of the same-layer pairs' onset while held, ``relaxation``
+    the first stiffness (N/m per node) of the pseudo-transient continuation after them
+    (``Stabiliser``).
     Raises
     ``LoadStepFailure`` when a step cannot be cut small enough to converge (the last converged
     state stays in the problem)."""
@@ -152,6 +155,8 @@ def run_programme(
             stabilisation,
             onset=held_onset,
             newton=problem.solver,
+            relaxation=relaxation,
+            length=max(layer.wire.diameter for layer in model.geometry.cable.layers),
         )
     for index, stage in enumerate(programme.stages):
         if index < first:

@@ -128,6 +128,8 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         self._snes.setConvergenceTest(self._convergence)
         self._snes.setFromOptions()
         self._saved = u.x.array.copy()
+        #: ``relax``: (stiffness per dof, the unknowns the springs hold to, a work vector)
+        self._relax: tuple[PETSc.Vec, PETSc.Vec, PETSc.Vec] | None = None
         self._kept_residual: npt.NDArray[np.float64] | None = None  # ``keep_residual``
         #: wall time (s) in: residual and Jacobian callbacks (everything they do), the pair terms'
         #: evaluation (inside the callbacks), their insertion into PETSc objects (idem), and the
@@ -177,6 +179,11 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         fem_petsc.apply_lifting(b, [self._J], bcs=[self.bcs], x0=[x], alpha=-1.0)
         b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
         fem_petsc.set_bc(b, self.bcs, x0=x, alpha=-1.0)
+        if self._relax is not None:  # + D (x − x_ref), zero at the Dirichlet dofs
+            d, ref, work = self._relax
+            work.waxpy(-1.0, ref, x)
+            work.pointwiseMult(work, d)
+            b.axpy(1.0, work)
         b.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         self.timings["residual"] += time.perf_counter() - t0
 
@@ -192,6 +199,9 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         t2 = time.perf_counter()
         self._pairs.add_tangents(J, terms)
         J.assemble()
+        if self._relax is not None:  # + D
+            J.setDiagonal(self._relax[0], addv=PETSc.InsertMode.ADD_VALUES)
+            J.assemble()
         if self._P is self._A:  # a fresh LU of every Jacobian
             self._factorisations += 1
         elif self._renew_lu(snes):
@@ -348,6 +358,45 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         contact history does not give it back to round-off)."""
         self._kept_residual = np.array(residual, dtype=float).reshape(-1, 6)
 
+    # -- pseudo-transient relaxation -------------------------------------------------------------
+    def relax(self, stiffness: float | None, length: float = 1.0) -> None:
+        """Hold every free dof to its current value by a spring (``stiffness`` N/m on the
+        displacements, ``stiffness`` × ``length``² N m/rad on the rotations; None: off): the
+        residual gains D (w − w_now) and the Jacobian D, a diagonal that no Dirichlet dof
+        carries. A pseudo-time step of pseudo-transient continuation
+        (``Stabiliser.relaxed_solve``): its solves stay well posed where the tangent is not
+        (a vault buckling onto the core)."""
+        if self._relax is not None:
+            for v in self._relax:
+                v.destroy()
+            self._relax = None
+        if stiffness is None:
+            return
+        if not stiffness > 0 or not length > 0:
+            raise ValueError(f"relax: stiffness {stiffness} N/m and length {length} m must be > 0")
+        d = self._x.duplicate()
+        n = d.getLocalSize()
+        per_dof = np.empty((n // 6, 6))
+        per_dof[:, :3] = stiffness
+        per_dof[:, 3:] = stiffness * length**2
+        diagonal = per_dof.ravel()
+        diagonal[self._pairs.bc_mask[:n]] = 0.0
+        d.array[:] = diagonal
+        ref = self._x.duplicate()
+        fem_petsc.assign(self._u, ref)
+        self._relax = (d, ref, self._x.duplicate())
+
+    def relaxation_force(self) -> float:
+        """The 2-norm (N, N m) of the springs' force D (w − w_ref) at the current unknowns:
+        after a converged relaxed solve, the residual of the problem without them (0: off)."""
+        if self._relax is None:
+            return 0.0
+        d, ref, work = self._relax
+        fem_petsc.assign(self._u, work)
+        work.axpy(-1.0, ref)
+        work.pointwiseMult(work, d)
+        return float(work.norm(PETSc.NormType.NORM_2))  # type: ignore[arg-type]
+
     # -- load steps ------------------------------------------------------------------------------
     def commit(self) -> None:
         """Accept the current state: it becomes the one ``rollback`` returns to. Call it once
@@ -368,6 +417,8 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
     # -- PETSc objects ---------------------------------------------------------------------------
     def destroy(self) -> None:
         """Free the PETSc objects and remove this problem's options from PETSc's database."""
+        if getattr(self, "_relax", None) is not None:
+            self.relax(None)
         self._remove_options()
         for obj in (self._snes, self._A, self._b, self._x):
             obj.destroy()

@@ -27,17 +27,37 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import KW_ONLY, dataclass, field
-from typing import Protocol
+from typing import Any, Protocol
 
 from mpi4py import MPI
 
-__all__ = ["Stabilised", "Stabiliser"]
+from .convergence import NewtonResult
+
+__all__ = ["Stabilised", "Stabiliser", "RELAXATION_STEPS", "PLAIN_BELOW"]
+
+#: pseudo-time steps of a relaxed solve (``Stabiliser.relaxed_solve``)
+RELAXATION_STEPS = 100
+#: the springs' force (N) under which a relaxed solve tries the problem without them
+PLAIN_BELOW = 1.0
+#: the springs' stiffness after a failed pseudo-time step, and after an easy one (at most
+#: ``EASY`` Newton iterations), over the last: the steps stay as long as converge, just stiffer
+#: than the tangent's most negative stiffness
+STIFFER, SOFTER, EASY = 4.0, 0.5, 2
 
 
 class Patient(Protocol):
-    """A solver that can be patient for a last resort (``strand.solver.NonlinearProblem``)."""
+    """A solver that can be patient for a last resort and relax
+    (``strand.solver.NonlinearProblem``)."""
+
+    w: Any
 
     def last_resort(self, on: bool) -> None: ...
+
+    def relax(self, stiffness: float | None, length: float = 1.0) -> None: ...
+
+    def relaxation_force(self) -> float: ...
+
+    def solve(self) -> NewtonResult: ...
 
 
 class Stabilised(Protocol):
@@ -67,15 +87,28 @@ class Stabiliser:
     #: the solver whose attempts the springs hold: patient while they are on (no stall test,
     #: ``LAST_RESORT_ITERATIONS``), as the held attempts are the step's last
     newton: Patient | None = None
+    #: a third hold, where the second's cuts are exhausted too: pseudo-transient continuation
+    #: (``relaxed_solve``) from springs of this stiffness (N/m per node; None: none), with
+    #: ``length`` (m) turning it into the rotations' (× length², N m/rad)
+    relaxation: float | None = None
+    length: float = 1e-3
+    #: told one line per pseudo-time step of ``relaxed_solve`` (its progress), if given
+    report: Callable[[str], None] | None = None
     on: bool = field(default=False, init=False)
     #: the springs hold with the wider onset (``escalate``)
     widened: bool = field(default=False, init=False)
+    #: the step is solved by ``relaxed_solve`` (``escalate``)
+    relaxing: bool = field(default=False, init=False)
 
     def __post_init__(self):
         if not self.stiffness > 0:
             raise ValueError(f"Stabiliser: stiffness {self.stiffness} N/m, must be > 0")
         if self.onset is not None and not self.onset > 0:
             raise ValueError(f"Stabiliser: onset {self.onset} m, must be > 0")
+        if self.relaxation is not None and not (self.relaxation > 0 and self.newton):
+            raise ValueError(
+                f"Stabiliser: relaxation {self.relaxation} N/m needs a solver (newton) and > 0"
+            )
 
     def switch(self, on: bool, widened: bool = False) -> bool:
         """Springs on (at ``stiffness``; ``widened``: with the wider ``onset`` too) or off on
@@ -83,26 +116,92 @@ class Stabiliser:
         onset = self.onset if on and widened else None
         took = [g.stabilise(self.stiffness if on else None, onset) for g in self.groups]
         self.on = on
+        self.relaxing = False
         self.widened = bool(self.comm.allreduce(any(took), op=MPI.LOR))
         if self.newton is not None:
             self.newton.last_resort(on)
         return self.widened
 
-    def escalate(self) -> bool:
+    @property
+    def level(self) -> int:
+        """The hold now on: 0 none, 1 the springs, 2 the springs with the wider onset, 3 the
+        relaxation."""
+        return 3 if self.relaxing else 0 if not self.on else 2 if self.widened else 1
+
+    def escalate(self, relax: bool = True) -> bool:
         """The next hold for a step whose cuts are exhausted: the springs, then (their cuts
-        exhausted too) the springs with the wider ``onset``, where a group has a law to widen;
-        False when there is none left."""
+        exhausted too) the springs with the wider ``onset``, where a group has a law to widen,
+        then (``relax``: the stepper's solver is ``newton``) the springs off and the step
+        solved by ``relaxed_solve``; False when there is none left."""
+        if self.relaxing:
+            return False
         if not self.on:
             self.switch(True)
             return True
-        if self.onset is not None and not self.widened:
-            return self.switch(True, widened=True)
+        if self.onset is not None and not self.widened and self.switch(True, widened=True):
+            return True
+        if relax and self.relaxation is not None:
+            self.switch(False)
+            self.relaxing = True
+            return True
         return False
 
-    @property
-    def level(self) -> int:
-        """The hold now on: 0 none, 1 the springs, 2 the springs with the wider onset."""
-        return 0 if not self.on else 2 if self.widened else 1
+    def relaxed_solve(self) -> NewtonResult:
+        """The step solved by pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer.
+        Anal. 35, 1998), where Newton's tangent is not positive (a vault buckling onto the
+        core): solves with every free dof held by a spring c to where the last one left it
+        (``NonlinearProblem.relax``), c ``STIFFER`` after a failed one and, after a converged
+        one, softer by the ratio of the springs' force to the last where it fell (switched
+        evolution relaxation) or by ``SOFTER`` after an easy solve (so that it stays just
+        stiffer than the tangent's most negative stiffness, where the motion along the
+        unstable mode is fastest), until their force, falling, is under ``PLAIN_BELOW`` and a
+        solve without them converges from there. So the state found is an equilibrium of the problem itself
+        (nothing is left held: its fraction is 0); the springs choose which one, the one a
+        damped motion from the step's start reaches."""
+        newton = self.newton
+        assert newton is not None and self.relaxation is not None  # __post_init__
+        c, last = self.relaxation, None
+        its, lus, seconds = 0, 0, 0.0
+        result = None
+        for _ in range(RELAXATION_STEPS):
+            kept = newton.w.x.array.copy()
+            newton.relax(c, self.length)
+            r = newton.solve()
+            force = newton.relaxation_force() if r.converged else float("inf")
+            newton.relax(None)
+            its, lus, seconds = its + r.iterations, lus + r.factorisations, seconds + r.seconds
+            if self.report is not None:
+                self.report(
+                    f"relaxing: springs {c:.1e} N/m, {r.iterations} Newton its, "
+                    + (f"their force {force:.3g} N" if r.converged else "failed")
+                )
+            if not r.converged:
+                newton.w.x.array[:] = kept  # back to the last relaxed state, held stiffer
+                c *= STIFFER
+                continue
+            if force < PLAIN_BELOW and last is not None and force < last:  # coming to rest
+                relaxed = newton.w.x.array.copy()
+                result = newton.solve()
+                its += result.iterations
+                lus += result.factorisations
+                seconds += result.seconds
+                if result.converged:
+                    break
+                newton.w.x.array[:] = relaxed
+            if last is not None and force < last:
+                c *= max(force / last, 0.1)  # softer as it comes to rest
+            elif r.iterations <= EASY:
+                c *= SOFTER  # an easy solve: a longer pseudo-time step
+            last = force
+        converged = result is not None and result.converged
+        return NewtonResult(
+            converged,
+            its,
+            result.reason if result is not None else "relaxation: no converged solve",
+            result.residuals if result is not None else [],
+            seconds,
+            lus,
+        )
 
     def energy(self) -> float:
         """The hold's energy at the last evaluation (the springs' and the wider onset's),

@@ -70,7 +70,7 @@ class StepRecord:
     #: (``Stabiliser.fraction``); 0: the step converged without it
     stabilisation: float = 0.0
     #: the hold that carried the step (``Stabiliser.level``): 0 none, 1 the springs, 2 the
-    #: springs with the wider onset
+    #: springs with the wider onset, 3 the relaxation (an equilibrium: fraction 0)
     hold: int = 0
 
 
@@ -255,9 +255,14 @@ class LoadStepper:
             start_w = w.copy()
             if predict and previous is not None:  # secant predictor along the ramp
                 w += (trial - current) / previous[0] * previous[1]
-            if cuts == 0 and retries == 0 and not (self.stabiliser and self.stabiliser.on):
+            holding = self.stabiliser.level if self.stabiliser is not None else 0
+            if cuts == 0 and retries == 0 and not holding:
                 first_try = step  # the increment this step was first tried at
-            result = self.solver.solve()
+            if holding == 3:
+                assert self.stabiliser is not None  # holding
+                result = self.stabiliser.relaxed_solve()
+            else:
+                result = self.solver.solve()
             lus += result.factorisations
             if result.converged:
                 h, dw = trial - current, w - start_w
@@ -316,7 +321,7 @@ class LoadStepper:
                 if (
                     self.stabiliser is not None
                     and step / 2 < self.min_step
-                    and self.stabiliser.escalate()
+                    and self.stabiliser.escalate(relax=self.solver is self.stabiliser.newton)
                 ):  # cuts exhausted: the step again, held (then held harder)
                     step = first_try
                     continue
@@ -338,7 +343,7 @@ class LoadStepper:
 
     def _release(self) -> float:
         """Switch the stabiliser off; its energy fraction at the last evaluation (0: was off)."""
-        if self.stabiliser is None or not self.stabiliser.on:
+        if self.stabiliser is None or not self.stabiliser.level:
             return 0.0
         fraction = self.stabiliser.fraction()
         self.stabiliser.switch(False)

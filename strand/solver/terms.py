@@ -144,6 +144,11 @@ class PairAssembler:
         self._cache: tuple[Array, list[EvaluatedTerms]] | None = None
         self._layouts: list | None = None
 
+    @property
+    def bc_mask(self) -> npt.NDArray[np.bool_]:
+        """The Dirichlet dofs among the local ones, ghosts included (6 per node)."""
+        return self._bc_mask
+
     def evaluate(
         self, wl: Array, timings: dict[str, float], tangent: bool = True
     ) -> list[EvaluatedTerms]:

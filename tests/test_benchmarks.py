@@ -131,6 +131,16 @@ def _newton_iteration(done: subprocess.CompletedProcess, folder: Path) -> None:
     assert share and 0 < float(share.group(1)) < 100
 
 
+def _converged_relaxation(done: subprocess.CompletedProcess) -> None:
+    """The quick step (nothing buckles) comes to rest: the relaxation converged, the springs'
+    force falling, its last under 1 N."""
+    assert re.search(
+        r"^500 → 1000 N: converged after [1-9]\d* pseudo-time steps", done.stdout, re.M
+    )
+    forces = [float(f) for f in re.findall(r"their force (\S+) N", done.stdout)]
+    assert forces and forces[-1] < 1.0 and forces[-1] < forces[0]
+
+
 @dataclass(frozen=True)
 class Quick:
     """A script's quick run: its arguments after ``--quick``, the head of the table it prints
@@ -189,6 +199,11 @@ QUICK = {
     "parallel.py": Quick(
         r"variant +time \(s\) +steps +its +cuts +s/it +LU share +peak memory per rank \(MiB\)",
         r"Cardinal 0\.05 m, 2 ranks +[\d.]+ +[1-9]\d* .*",
+    ),
+    "relaxation.py": Quick(
+        r"layer +max\|radial\| µm +max\|hoop\| µm +max\|axial\| µm +max\|rotation\| mrad",
+        r"1 +\d+\.\d\d +\d+\.\d\d +\d+\.\d\d +\d+\.\d{3}",
+        check=lambda done, folder: _converged_relaxation(done),
     ),
     "sliding_comparison.py": Quick(
         r"model +steps +cuts +Newton its +time s .*", r"large +[1-9]\d* +\d+ +[1-9]\d* .*"

@@ -52,7 +52,8 @@ def layer_moves(problem, w0: np.ndarray) -> list[list[str]]:
         k = layer == i
         local = [np.abs(v[k]).max(initial=0.0) for v in (radial, hoop, d[:, 2])]
         local.append(np.abs(d[k, 3:]).max(initial=0.0))
-        top = model.comm.allreduce(np.array(local), op=MPI.MAX)
+        top = np.empty(4)
+        model.comm.Allreduce(np.array(local), top, op=MPI.MAX)
         rows.append([str(i), *(f"{v * 1e6:.2f}" for v in top[:3]), f"{top[3] * 1e3:.3f}"])
     return rows
 

@@ -17,6 +17,10 @@ approach, exact beyond (``strand.contact.normal_laws.CubicOnset``): the neighbou
 layer that sit within nanometres of touching then stop opening and closing every iteration (the
 chatter that held 1 m of Cardinal with its ring vaulted at 500 N, design notes 2026-11-29).
 
+Where that fails too, the tangent itself may not be positive (past a buckling: 1 m of Cardinal
+with its ring vaulted at 20 kN); an opt-in third hold (``relaxation``) solves the step by
+pseudo-transient continuation instead (``relaxed_solve``), which leaves nothing held.
+
 What they did is reported as Abaqus reports ALLSD beside ALLIE: the springs' energy at the
 converged step, ½ Σ k (|Δg_T|² + Δg_N²), and in a second hold the force the wider onset leaves
 out, as an energy ½ Σ Δp²/k_N (``CubicOnset.energy``), over the strain energy of the beams (a
@@ -155,9 +159,9 @@ class Stabiliser:
         evolution relaxation) or by ``SOFTER`` after an easy solve (so that it stays just
         stiffer than the tangent's most negative stiffness, where the motion along the
         unstable mode is fastest), until their force, falling, is under ``PLAIN_BELOW`` and a
-        solve without them converges from there. So the state found is an equilibrium of the problem itself
-        (nothing is left held: its fraction is 0); the springs choose which one, the one a
-        damped motion from the step's start reaches."""
+        solve without them converges from there. So the state found is an equilibrium of the
+        problem itself (nothing is left held: its fraction is 0); the springs choose which
+        one, the one a damped motion from the step's start reaches."""
         newton = self.newton
         assert newton is not None and self.relaxation is not None  # __post_init__
         c, last = self.relaxation, None

@@ -277,7 +277,6 @@ class LoadStepper:
                     continue
                 settling = self.settles and resume is None and not records
                 previous = None if settling else (h, dw)
-                hold = self.stabiliser.level if self.stabiliser is not None else 0
                 stabilisation = self._release()
                 self.solver.commit()
                 rec = StepRecord(
@@ -293,7 +292,7 @@ class LoadStepper:
                     rejections,
                     lus,
                     stabilisation=stabilisation,
-                    hold=hold,
+                    hold=holding,
                 )
                 current = trial
                 if proposal is not None:

@@ -365,7 +365,7 @@ class NonlinearProblem(fem_petsc.NonlinearProblem):
         residual gains D (w − w_now) and the Jacobian D, a diagonal that no Dirichlet dof
         carries. A pseudo-time step of pseudo-transient continuation
         (``Stabiliser.relaxed_solve``): its solves stay well posed where the tangent is not
-        (a vault buckling onto the core)."""
+        (past a buckling, or where friction's slip tangent is not)."""
         if self._relax is not None:
             for v in self._relax:
                 v.destroy()

@@ -17,8 +17,8 @@ approach, exact beyond (``strand.contact.normal_laws.CubicOnset``): the neighbou
 layer that sit within nanometres of touching then stop opening and closing every iteration (the
 chatter that held 1 m of Cardinal with its ring vaulted at 500 N, design notes 2026-11-29).
 
-Where that fails too, the tangent itself may not be positive (past a buckling: 1 m of Cardinal
-with its ring vaulted at 20 kN); an opt-in third hold (``relaxation``) solves the step by
+Where that fails too, the tangent itself may not be positive (past a buckling, or with
+friction's slip tangent: 1 m of Cardinal with its ring vaulted at 20 kN); an opt-in third hold (``relaxation``) solves the step by
 pseudo-transient continuation instead (``relaxed_solve``), which leaves nothing held.
 
 What they did is reported as Abaqus reports ALLSD beside ALLIE: the springs' energy at the
@@ -152,9 +152,9 @@ class Stabiliser:
 
     def relaxed_solve(self) -> NewtonResult:
         """The step solved by pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer.
-        Anal. 35, 1998), where Newton's tangent is not positive (a vault buckling onto the
-        core): solves with every free dof held by a spring c to where the last one left it
-        (``NonlinearProblem.relax``), c ``STIFFER`` after a failed one and, after a converged
+        Anal. 35, 1998), where Newton's tangent is not positive (past a buckling, or where
+        friction's slip tangent is not): solves with every free dof held by a spring c to where
+        the last one left it (``NonlinearProblem.relax``), c ``STIFFER`` after a failed one and, after a converged
         one, softer by the ratio of the springs' force to the last where it fell (switched
         evolution relaxation) or by ``SOFTER`` after an easy solve (so that it stays just
         stiffer than the tangent's most negative stiffness, where the motion along the

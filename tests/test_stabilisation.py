@@ -405,8 +405,14 @@ def test_a_relaxed_solve_comes_to_rest_where_newton_cannot_start():
     fold = Fold(0.0, 0.5)
     assert not fold.solve().converged
     fold.w.x.array[:] = 0.0
-    stabiliser = Stabiliser([], lambda: 1.0, MPI.COMM_SELF, newton=fold, relaxation=1.0)
+    lines: list[str] = []  # its progress, a line per pseudo-time step
+    stabiliser = Stabiliser(
+        [], lambda: 1.0, MPI.COMM_SELF, newton=fold, relaxation=1.0, report=lines.append
+    )
     result = stabiliser.relaxed_solve()
+    assert len(lines) == len(fold.log) - 2  # every relaxed solve, not the two plain ones
+    assert lines[0].endswith("failed") and "springs 4.0e+00 N/m" in lines[1]
+    assert all(" N/m, " in line for line in lines)
     root = np.roots([1, 0, -3, -0.5]).real.max()
     assert result.converged and fold.w.x.array[0] == pytest.approx(root, rel=1e-12)
     assert fold.log[1:3] == [(1.0, False), (4.0, True)]  # too soft, then four times stiffer

@@ -68,6 +68,12 @@ class Progress:
             flush=True,
         )
 
+    def note(self, line: str) -> None:
+        """A line within a step (a relaxation's pseudo-time step), with the elapsed time."""
+        print(
+            f"{'':26} {line}  {time.perf_counter() - self.t0:6.1f} s", file=self.stream, flush=True
+        )
+
 
 def case_recorders(
     case: Case,

@@ -119,6 +119,7 @@ def _take_programme(
                 recording.on_step,
                 start.position if start else None,
                 **step_control(recording.case),
+                report=recording.progress.note,
             )
     except RunInterrupted as stop:
         outcome = Outcome(

@@ -131,6 +131,7 @@ def run_programme(
     stabilisation: float | None = None,
     held_onset: float | None = None,
     relaxation: float | None = None,
+    report: Callable[[str], None] | None = None,
 ) -> None:
     """Take ``problem`` (its ``setup`` and ``solver``) through every stage; ``on_step(stage,
     record, position)`` after every committed step. ``start``: continue from a position (the
@@ -138,8 +139,8 @@ def run_programme(
     ``retry``: ``LoadStepper``'s, for every stage (default: growth after easy solves, no
     retry). ``stabilisation``: the contact springs (N/m) of a step whose cuts are exhausted,
     ``held_onset`` the width (m) of the same-layer pairs' onset while held, ``relaxation``
-    the first stiffness (N/m per node) of the pseudo-transient continuation after them
-    (``Stabiliser``).
+    the first stiffness (N/m per node) of the pseudo-transient continuation after them, told
+    to ``report`` a line per pseudo-time step (``Stabiliser``).
     Raises
     ``LoadStepFailure`` when a step cannot be cut small enough to converge (the last converged
     state stays in the problem)."""
@@ -156,6 +157,7 @@ def run_programme(
             onset=held_onset,
             newton=problem.solver,
             relaxation=relaxation,
+            report=report,
             length=max(layer.wire.diameter for layer in model.geometry.cable.layers),
         )
     for index, stage in enumerate(programme.stages):

@@ -41,6 +41,10 @@ def seven(tmp_path) -> Path:
         (["{case}", "--set", "load.saddle_length=0.5"], "saddle_length = 0.5 m must be shorter"),
         (["{case}", "--set", "load.saddle_length=1e-3"], "at least \\[mesh\\] h_max"),
         (["{case}", "--set", "load.tension=-5e3"], "compressed strand is outside the model"),
+        (
+            ["{case}", "--set", "steps.relax=1e5", "--set", "steps.stabilise=0"],
+            r"\[steps\] relax = 100000 N/m needs \[steps\] stabilise > 0",
+        ),
         (["{case}", "--set", "meshh_max"], "expected section.key=value"),
         (["{case}", "--set", "mesh.hmax=1"], r"unknown setting\(s\) in \[mesh\]: \['hmax'\]"),
         # elements from a tenth of the 3.34 mm wires to an eighth of the 198 mm lay length

@@ -113,7 +113,7 @@ def step_control(case: Case) -> dict:
         "retry": s.retry,
         "stabilisation": s.stabilise if s.stabilise > 0 else None,
         "held_onset": s.held_onset if s.held_onset > 0 else None,
-        "relaxation": s.relax if s.relax > 0 and s.stabilise > 0 else None,
+        "relaxation": s.relax if s.relax > 0 else None,  # with stabilise > 0 (checks.py)
     }
 
 

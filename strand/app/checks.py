@@ -79,6 +79,11 @@ def _check_steps_and_load(case: Case) -> SetupKind:
             f"cable: from the thinnest wire's diameter / {_FINEST} (a beam resolves nothing "
             f"shorter) to the shortest lay length / {_TURN} (a helix needs {_TURN} elements a turn)"
         )
+    if steps.relax > 0 and steps.stabilise <= 0:
+        raise CaseError(
+            f"[steps] relax = {steps.relax:g} N/m needs [steps] stabilise > 0: the relaxation "
+            "is the hold after the springs' (set stabilise, 1e4 by default, or relax = 0)"
+        )
     kind = kinds.kind_of(case)
     kind.check_case(case)
     if load.sweep and not any(load.cycle):

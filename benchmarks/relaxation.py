@@ -83,7 +83,7 @@ def main(case_file, checkpoint, increment, stiffness, steps, settings, quick) ->
         comm,
         newton=problem.solver,
         relaxation=stiffness,
-        length=max(layer.wire.diameter for layer in problem.geometry.cable.layers),
+        length=problem.geometry.cable.largest_wire_diameter,
         report=lambda line: lines.append(f"{time.strftime('%X')} {line}"),
     )
     t0 = time.perf_counter()

@@ -89,7 +89,7 @@ def newton_options(case: Case) -> NewtonOptions:
     the mean wire tension (forces) and that force on the largest wire diameter (moments)."""
     s = case.steps
     force = s.balance * case.load.tension / case.cable.n_wires
-    diameter = max(layer.wire.diameter for layer in case.cable.layers)
+    diameter = case.cable.largest_wire_diameter
     return NewtonOptions(
         atol=s.tolerance,
         max_it=s.max_iterations,

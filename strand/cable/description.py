@@ -109,6 +109,11 @@ class Cable:
         return 2 * top.radius + top.wire.diameter
 
     @property
+    def largest_wire_diameter(self) -> float:
+        """The thickest wire's diameter (m)."""
+        return max(lay.wire.diameter for lay in self.layers)
+
+    @property
     def n_wires(self) -> int:
         return sum(lay.wires for lay in self.layers)
 

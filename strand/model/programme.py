@@ -158,7 +158,7 @@ def run_programme(
             newton=problem.solver,
             relaxation=relaxation,
             report=report,
-            length=max(layer.wire.diameter for layer in model.geometry.cable.layers),
+            length=model.geometry.cable.largest_wire_diameter,
         )
     for index, stage in enumerate(programme.stages):
         if index < first:

@@ -399,8 +399,8 @@ class Fold:
 def test_a_relaxed_solve_comes_to_rest_where_newton_cannot_start():
     """From x = 0, between the folds of R = x³ − 3x − ½ (tangent −3), Newton fails; pseudo-
     transient continuation (springs c from x to where the last solve left it, c = 1 too soft:
-    four times stiffer, then softer as the springs' force falls) moves x as a damped motion would, to the
-    stable root beyond the fold, 1.8100379…, where the plain Newton then converges: an
+    four times stiffer, then softer as the springs' force falls) moves x as a damped motion
+    would, to the stable root beyond the fold, 1.8100379…, where the plain Newton then converges: an
     equilibrium of R itself, not of R with springs."""
     fold = Fold(0.0, 0.5)
     assert not fold.solve().converged

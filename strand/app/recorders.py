@@ -54,7 +54,8 @@ class StepTable(_CsvFile):
     the field series), the set-up's state, with a ``gauge`` (``reactions.ReactionGauge``) the
     strand's reactions at both ends (``EndReactions``, also kept in ``reactions`` by step
     number), Newton's iterations, cuts and LU factorisations, the contact stabilisation's energy
-    fraction and hold (0 none, 1 springs, 2 springs and wider onset), wall time (s) and final residual norm (N)."""
+    fraction and hold (0 none, 1 springs, 2 springs and wider onset, 3 relaxed), wall time (s)
+    and final residual norm (N)."""
 
     def __init__(self, folder: Path, state_type, gauge=None):
         from ..model.reactions import EndReactions

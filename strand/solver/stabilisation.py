@@ -18,8 +18,9 @@ layer that sit within nanometres of touching then stop opening and closing every
 chatter that held 1 m of Cardinal with its ring vaulted at 500 N, design notes 2026-11-29).
 
 Where that fails too, the tangent itself may not be positive (past a buckling, or with
-friction's slip tangent: 1 m of Cardinal with its ring vaulted at 20 kN); an opt-in third hold (``relaxation``) solves the step by
-pseudo-transient continuation instead (``relaxed_solve``), which leaves nothing held.
+friction's slip tangent: 1 m of Cardinal with its ring vaulted at 20 kN); an opt-in third hold
+(``relaxation``) solves the step by pseudo-transient continuation instead (``relaxed_solve``),
+which leaves nothing held.
 
 What they did is reported as Abaqus reports ALLSD beside ALLIE: the springs' energy at the
 converged step, ½ Σ k (|Δg_T|² + Δg_N²), and in a second hold the force the wider onset leaves
@@ -154,8 +155,8 @@ class Stabiliser:
         """The step solved by pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer.
         Anal. 35, 1998), where Newton's tangent is not positive (past a buckling, or where
         friction's slip tangent is not): solves with every free dof held by a spring c to where
-        the last one left it (``NonlinearProblem.relax``), c ``STIFFER`` after a failed one and, after a converged
-        one, softer by the ratio of the springs' force to the last where it fell (switched
+        the last one left it (``NonlinearProblem.relax``), c ``STIFFER`` after a failed one
+        and, after a converged one, softer by the ratio of the springs' force to the last where it fell (switched
         evolution relaxation) or by ``SOFTER`` after an easy solve (so that it stays just
         stiffer than the tangent's most negative stiffness, where the motion along the
         unstable mode is fastest), until their force, falling, is under ``PLAIN_BELOW`` and a

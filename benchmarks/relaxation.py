@@ -28,7 +28,6 @@ import numpy as np
 from harness import ROOT, add_settings, parser, stamp, table
 from mpi4py import MPI
 
-import strand.solver.stabilisation as stabilisation
 from strand.app.build import build_problem, restart_from, setup_and_programme
 from strand.app.case import load_case
 from strand.app.kind_registry import lookup
@@ -72,7 +71,6 @@ def main(case_file, checkpoint, increment, stiffness, steps, settings, quick) ->
     else:
         _, programme = setup_and_programme(case, lookup(case.load.kind))
         restart_from(problem, programme, read_checkpoint(checkpoint), checkpoint)
-    stabilisation.RELAXATION_STEPS = steps
     start = setup.get("tension")
     setup.set("tension", start + increment)
     w0 = problem.solver.w.x.array.copy()
@@ -84,6 +82,7 @@ def main(case_file, checkpoint, increment, stiffness, steps, settings, quick) ->
         newton=problem.solver,
         relaxation=stiffness,
         length=problem.geometry.cable.largest_wire_diameter,
+        relaxation_steps=steps,
         report=lambda line: lines.append(f"{time.strftime('%X')} {line}"),
     )
     t0 = time.perf_counter()

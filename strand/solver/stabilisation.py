@@ -99,6 +99,8 @@ class Stabiliser:
     length: float = 1e-3
     #: told one line per pseudo-time step of ``relaxed_solve`` (its progress), if given
     report: Callable[[str], None] | None = None
+    #: pseudo-time steps a ``relaxed_solve`` takes at most
+    relaxation_steps: int = RELAXATION_STEPS
     on: bool = field(default=False, init=False)
     #: the springs hold with the wider onset (``escalate``)
     widened: bool = field(default=False, init=False)
@@ -168,7 +170,7 @@ class Stabiliser:
         c, last = self.relaxation, None
         its, lus, seconds = 0, 0, 0.0
         result = None
-        for _ in range(RELAXATION_STEPS):
+        for _ in range(self.relaxation_steps):
             kept = newton.w.x.array.copy()
             newton.relax(c, self.length)
             r = newton.solve()

@@ -106,22 +106,25 @@ def test_seven_wire_saddle_is_the_same_on_1_2_and_3_ranks(seven_wire):
         assert (out[n] / "fields.h5").stat().st_size > 0 and (out[n] / "fatigue.txt").exists()
 
 
+#: the 1+6 in the uniform bending set-up, to 0.5 1/m
+BENDING = [
+    "--set",
+    'load.kind="bending"',
+    "--set",
+    "load.zone=0.04",
+    "--set",
+    "load.curvature=0.5",
+    "--set",
+    "steps.curvature=0.1",
+    "--set",
+    "steps.curvature_max=0.2",
+]
+
+
 @needs_mpirun
 @pytest.mark.slow
 def test_seven_wire_bending_and_large_sliding_are_the_same_on_3_and_2_ranks(seven_wire):
-    bending = [
-        "--set",
-        'load.kind="bending"',
-        "--set",
-        "load.zone=0.04",
-        "--set",
-        "load.curvature=0.5",
-        "--set",
-        "steps.curvature=0.1",
-        "--set",
-        "steps.curvature_max=0.2",
-    ]
-    _run_and_compare(seven_wire, ["seven.toml", *bending], ranks=(3,), tag="bending")
+    _run_and_compare(seven_wire, ["seven.toml", *BENDING], ranks=(3,), tag="bending")
     large = ["--set", 'contact.model="large"']
     _run_and_compare(seven_wire, ["seven.toml", *large], ranks=(2,), tag="large")
 
@@ -155,6 +158,17 @@ def test_same_layer_pairs_are_the_same_on_1_and_2_ranks(seven_wire):
     _run_and_compare(
         seven_wire, ["seven.toml", *TOUCHING], ranks=(2,), tag="same_layer", counts=("cuts",)
     )
+
+
+@needs_mpirun
+@pytest.mark.slow
+def test_a_vaulted_core_held_on_its_axis_is_the_same_on_1_and_2_ranks(seven_wire):
+    """The 1+6 vaulted over its core (``first_layer = "ring"``) in the bending set-up: the
+    springs that hold its core on the ring's axis (``CoreCentring``: the core node and layer
+    1's twelve nodes about its z) are kept whole on the rank owning the core node; the touching
+    ring's fixed load path and tolerance."""
+    ring = [*BENDING, *TOUCHING, "--set", 'contact.first_layer="ring"']
+    _run_and_compare(seven_wire, ["seven.toml", *ring], ranks=(2,), tag="ring", counts=("cuts",))
 
 
 @needs_mpirun
@@ -237,12 +251,14 @@ def test_mesh_and_bad_input_speak_once_under_mpirun(tmp_path):
     assert sorted(p.name for p in other.iterdir()) == ["notes.txt"]
 
 
+@pytest.mark.parametrize("first_layer", ["on_core", "ring"])
 @pytest.mark.parametrize("nparts", [2, 3, 5])
-def test_slab_partition_keeps_every_stencil_whole_on_its_anchors_owners(nparts):
+def test_slab_partition_keeps_every_stencil_whole_on_its_anchors_owners(nparts, first_layer):
     """Whichever rank owns a pair's node a (one of the owners of a cell touching it) holds every
-    cell touching the pair's nodes, and each wire's neighbouring cells (one of overlap)."""
+    cell touching the pair's nodes, and each wire's neighbouring cells (one of overlap); with a
+    vaulted first layer, also every core node's ring centre (``ring_centres``)."""
     g = build_geometry(cardinal(), 0.05, 4e-3)
-    stencils = strand_stencils(g, ContactSettings())
+    stencils = strand_stencils(g, ContactSettings(first_layer=first_layer))
     owner, ghosts = slab_destinations(g.points[:, 2], g.cells, nparts, stencils)
     counts = np.bincount(owner, minlength=nparts)
     assert counts.max() - counts.min() <= 1  # equal slabs

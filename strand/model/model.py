@@ -20,9 +20,11 @@ from forms import CircularSection, ReissnerBeam
 
 from ..beam.fields import cell_function
 from ..beam.partition import DistributionError, owned_rows
+from ..cable.centring import ring_centres
 from ..cable.geometry import StrandGeometry
 from ..cable.mesh import CableMesh, beam_space, cable_mesh, input_to_block
 from .contact_settings import ContactSettings
+from .layer_states import first_layer_lift
 from .pair_results import PairResults
 from .same_layer import SameLayerPairs, same_layer_groups, same_layer_pairs
 from .strand_contact import (
@@ -103,7 +105,9 @@ def strand_stencils(
     """Input nodes that a strand's terms couple, anchor first, which a distributed mesh keeps
     whole on the rank owning the anchor (``cable_mesh``): the contact pairs' (small or large
     sliding; the same-layer pairs ``same_layer``, default: those ``settings`` choose), and each
-    end section (the core's end, then every other wire end), which the set-ups tie to a pilot."""
+    end section (the core's end, then every other wire end), which the set-ups tie to a pilot;
+    with a core that touches no wire (a vaulted first layer), each core node and its first
+    layer's centre (``ring_centres``), which the bending set-ups tie together."""
     if settings.model == "large":
         out = [nodes for _, nodes, _, _ in sliding_windows(geometry, settings.reach)]
     else:
@@ -114,6 +118,8 @@ def strand_stencils(
             out += [w.nodes for w in same_layer_windows(geometry, pairs, settings.reach)]
         else:
             out.append(pairs.stencils)
+    if first_layer_lift(geometry.cable, settings.first_layer) > 0:  # a core that touches none
+        out.append(ring_centres(geometry).stencils)  # the bending set-ups hold it centred
     offsets = geometry.wire_offsets
     return out + [offsets[:-1][None, :], (offsets[1:] - 1)[None, :]]
 

@@ -26,7 +26,10 @@ wires carry the tension T. What it costs: the strut's transverse load Tκ per un
 strand at the core and reaches the outer layers through the contacts (at κ = 0.5 1/m and 40 kN,
 20 kN/m on the side away from the centre of curvature, against the 169/137/94/52 kN/m of radial
 load that tension alone puts on the interfaces 0|1 … 3|4); at the curvatures where layers start to
-slip (κ ≤ 0.1 1/m) it is under 5 % of those.
+slip (κ ≤ 0.1 1/m) it is under 5 % of those. The strut makes the core a column under T, held
+sideways by its contacts; a core that touches no wire (a vaulted first layer) is held on the
+layer's axis by springs instead (``centring.CoreCentring``), which the section's moment does not
+see (they act between the core and the ring).
 
 The wire ends stick to their sections, so the ends are stiffer than a free strand: the curvature
 is measured on a central zone (``zone`` long), from the rotation of the core's tangent between the
@@ -43,10 +46,13 @@ import numpy.typing as npt
 from dolfinx import fem
 
 from ..beam.records import quantity
+from ..cable.centring import ring_centres
 from ..contact.kinematics import rotation_matrix
 from ..model.cell_results import CellResults, section_resultants
+from ..model.layer_states import first_layer_lift
 from ..model.model import StrandModel
 from .base import TestSetup, pilot_links
+from .centring import CENTRING_STIFFNESS, CoreCentring
 
 __all__ = ["UniformBendingTest", "CoreStrut", "UniformBendingState", "ZoneBending"]
 
@@ -189,6 +195,17 @@ class UniformBendingTest(TestSetup):
         mine = model.owned_rows(segments, "core strut segments")
         self.strut = CoreStrut(i2b[segments[mine]], np.diff(g.points[core], axis=0)[mine])
         self.terms = [self.links, self.strut]
+        #: a core that touches no wire, held on its first layer's axis (``centring``); None else
+        self.centring: CoreCentring | None = None
+        if first_layer_lift(g.cable, model.contact_settings.first_layer) > 0:
+            rings = ring_centres(g)
+            mine = model.owned_rows(rings.stencils, "core centring springs")
+            self.centring = CoreCentring(
+                i2b[rings.stencils[mine]],
+                rings.weights[mine],
+                CENTRING_STIFFNESS * rings.length[mine],
+            )
+            self.terms.append(self.centring)
         # the measuring zone: core points at its ends, section heights
         zc = g.points[core, 2]
         a, b = L / 2 - self.zone / 2, L / 2 + self.zone / 2

@@ -37,14 +37,17 @@ from strand.solver import Stabiliser
 
 def layer_moves(problem, w0: np.ndarray) -> list[list[str]]:
     """Per layer: the largest |Δ| of the radial, hoop and axial displacement (µm) and of the
-    rotation (mrad) since ``w0``, over all ranks."""
+    rotation (mrad) since ``w0``, over all ranks; on the axis (the core), the lateral
+    displacement's magnitude in the radial column, none in the hoop one."""
     model, g = problem.model, problem.geometry
     pts = model.owned_points
     d = (problem.solver.w.x.array - w0).reshape(-1, 6)[model.i2b[pts]]
     x = g.points[pts]
-    r = np.maximum(np.linalg.norm(x[:, :2], axis=1), 1e-12)
-    c, s = x[:, 0] / r, x[:, 1] / r
+    r = np.linalg.norm(x[:, :2], axis=1)
+    axis = r < 1e-9 * problem.geometry.length  # the core: no radial direction
+    c, s = x[:, 0] / np.where(axis, 1.0, r), x[:, 1] / np.where(axis, 1.0, r)
     radial, hoop = d[:, 0] * c + d[:, 1] * s, -d[:, 0] * s + d[:, 1] * c
+    radial[axis], hoop[axis] = np.linalg.norm(d[axis, :2], axis=1), 0.0
     layer = g.wire_layer[g.point_wire[pts]]
     rows = []
     for i in range(len(g.cable.layers)):

@@ -223,9 +223,9 @@ class StepSettings(WithKinds):
         "left it, stiffer after a failed solve, softer as the strand comes to rest, until the "
         "step converges without it: an equilibrium of the strand itself, for a tangent that "
         "is not positive (past a buckling; Stabiliser.relaxed_solve). 0 (the default): none; "
-        "1e5 to try it; it needs stabilise > 0. Off by default: on 1 m of Cardinal with its "
-        "ring vaulted it did not come to rest in 100 pseudo-time steps (design notes "
-        "2026-11-29, last).",
+        "1e5 to try it; it needs stabilise > 0. Off by default: on a buckling core (1 m of "
+        "Cardinal, ring vaulted, before the bending set-up held it centred) it did not come "
+        "to rest in 100 pseudo-time steps (design notes 2026-11-29, last).",
         unit="N/m",
         sign="zero_is_off",
     )

@@ -205,8 +205,8 @@ def test_a_step_over_a_kink_is_rejected_and_taken_smaller():
 def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halved():
     """With ``retry``, a failed attempt is tried again at the same increment from the last
     converged state, without the predictor if it was on (with it if off); if that fails too,
-    the increment is halved, with no second retry for the same step. A ramp's first step has
-    no predictor to switch: it is halved at once."""
+    the increment is halved, and the halved one is tried from both starts in turn again. A
+    ramp's first step has no predictor to switch: it is halved at once."""
 
     def predictor_fails(lam, predicted):  # the predictor overshoots at λ = 0.4
         return predicted and lam == pytest.approx(0.4)
@@ -229,9 +229,16 @@ def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halve
     _, records = ramp(solver, 0.0, 0.6, first_step=0.2, min_step=1e-3, growth=2.0, retry=True)
     tried = [(round(lam, 9), p) for lam, p in solver.attempts]
     # λ = 0.2, then 0.6 (+0.4) fails, its retry with the predictor fails, 0.4 (+0.2) fails
-    # (no second retry), 0.3 (+0.1) converges
-    assert tried[:5] == [(0.2, False), (0.6, False), (0.6, True), (0.4, False), (0.3, False)]
-    assert (records[1].load, records[1].retries, records[1].cuts) == (pytest.approx(0.3), 1, 2)
+    # from both starts, 0.3 (+0.1) converges at its first
+    assert tried[:6] == [
+        (0.2, False),
+        (0.6, False),
+        (0.6, True),
+        (0.4, False),
+        (0.4, True),
+        (0.3, False),
+    ]
+    assert (records[1].load, records[1].retries, records[1].cuts) == (pytest.approx(0.3), 2, 2)
 
     first_fails = PathSolver(lambda x: x**2, lambda lam, predicted: lam == pytest.approx(0.2))
     _, records = ramp(
@@ -239,6 +246,30 @@ def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halve
     )
     assert [round(lam, 9) for lam, _ in first_fails.attempts[:2]] == [0.2, 0.1]
     assert records[0].retries == 0 and records[0].cuts == 1
+
+
+def test_a_halved_increment_is_tried_from_the_converged_state_too():
+    """The king wire's stall at 625 N (design notes 2026-11-30): past some load every attempt
+    started from the secant predictor fails, and so do the large ones from the converged
+    state, while a small increment from the converged state converges. Trying each increment
+    from both starts carries the ramp; trying the other start once per step, then only the
+    predictor, cut it to nothing."""
+
+    def predictor_and_large_steps_fail(lam, predicted):
+        past = lam > 0.2 + 1e-9
+        return past and (predicted or lam - solver.committed > 0.06 + 1e-9)
+
+    solver = PathSolver(lambda x: x**2, predictor_and_large_steps_fail)
+    commit = solver.commit
+    solver.committed = 0.0
+    solver.commit = lambda: (commit(), setattr(solver, "committed", solver.load))
+    _, records = ramp(
+        solver, 0.0, 0.3, first_step=0.1, min_step=1e-2, growth=1.0, extrapolate=True, retry=True
+    )
+    assert records[-1].load == pytest.approx(0.3)
+    # 0.3 (+0.1) fails from both starts, 0.25 (+0.05) from the predictor, then converges
+    tried = [(round(lam, 9), p) for lam, p in solver.attempts]
+    assert tried[2:6] == [(0.3, True), (0.3, False), (0.25, True), (0.25, False)]
 
 
 def test_a_controlled_ramp_resumed_from_any_step_takes_the_same_steps():

@@ -172,7 +172,8 @@ class LoadStepper:
             None (the default): the rule above.
         retry: after a failed attempt, try the same increment once more from the last
             converged state with the predictor switched (off if ``extrapolate``, else on)
-            before halving; once per step, and only where a predictor exists.
+            before halving: every increment is tried from both starting guesses, where a
+            predictor exists.
         settles: the ramp's first step is no guide to the next (e.g. a strand's first
             tension step, in which its contact pairs close): no predictor, and no error
             estimate, is taken from it.
@@ -237,6 +238,7 @@ class LoadStepper:
         # since the last success: step cuts, their Newton iterations, retries, rejections, LUs
         cuts, failed, retries, rejections, lus = 0, 0, 0, 0, 0
         predict = self.extrapolate  # start the next attempt from the secant predictor
+        retried = False  # whether this increment was tried from the other starting guess
         w = self.solver.w.x.array
         first_try = step  # the increment the step being taken was first tried at
         previous = None  # (load increment, unknowns increment) of the last step of this ramp
@@ -274,6 +276,7 @@ class LoadStepper:
                     failed += result.iterations
                     rejections += 1
                     predict = self.extrapolate
+                    retried = False
                     continue
                 settling = self.settles and resume is None and not records
                 previous = None if settling else (h, dw)
@@ -301,6 +304,7 @@ class LoadStepper:
                     step = min(step * self.growth, self.max_step)
                 cuts, failed, retries, rejections, lus = 0, 0, 0, 0, 0
                 predict = self.extrapolate
+                retried = False
                 self.state = RampState(step, previous)
                 records.append(rec)
                 self.history.append(rec)
@@ -312,10 +316,12 @@ class LoadStepper:
                 if self.solver.stop_requested():
                     continue  # not a failure: stop at the top of the loop
                 failed += result.iterations
-                if self.retry and retries == 0 and previous is not None:
+                if self.retry and not retried and previous is not None:
                     retries += 1
+                    retried = True
                     predict = not self.extrapolate  # the same increment, predictor switched
                     continue
+                retried = False
                 predict = self.extrapolate
                 if (
                     self.stabiliser is not None

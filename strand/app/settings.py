@@ -183,7 +183,11 @@ class StepSettings(WithKinds):
     error_tolerance: float = setting(
         1e-6, "Error control: the predictor's miss aimed at by each step.", unit="m"
     )
-    retry: bool = setting(True, "Retry a failed step once with the other predictor, then halve.")
+    retry: bool = setting(
+        True,
+        "Try a failed increment again from the other starting guess (the predictor or the "
+        "last converged state), then halve it; each halved increment likewise.",
+    )
     predictor: bool = setting(
         True,
         "Start each Newton solve of a ramp (tension, legs) from the secant predictor of its "

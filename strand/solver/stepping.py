@@ -173,7 +173,8 @@ class LoadStepper:
         retry: after a failed attempt, try the same increment once more from the last
             converged state with the predictor switched (off if ``extrapolate``, else on)
             before halving: every increment is tried from both starting guesses, where a
-            predictor exists.
+            predictor exists; not while the ``stabiliser`` holds the step (its attempts start
+            where the unheld ones did).
         settles: the ramp's first step is no guide to the next (e.g. a strand's first
             tension step, in which its contact pairs close): no predictor, and no error
             estimate, is taken from it.
@@ -316,7 +317,7 @@ class LoadStepper:
                 if self.solver.stop_requested():
                     continue  # not a failure: stop at the top of the loop
                 failed += result.iterations
-                if self.retry and not retried and previous is not None:
+                if self.retry and not retried and not holding and previous is not None:
                     retries += 1
                     retried = True
                     predict = not self.extrapolate  # the same increment, predictor switched

@@ -44,8 +44,9 @@ def layer_moves(problem, w0: np.ndarray) -> list[list[str]]:
     d = (problem.solver.w.x.array - w0).reshape(-1, 6)[model.i2b[pts]]
     x = g.points[pts]
     r = np.linalg.norm(x[:, :2], axis=1)
-    axis = r < 1e-9 * problem.geometry.length  # the core: no radial direction
-    c, s = x[:, 0] / np.where(axis, 1.0, r), x[:, 1] / np.where(axis, 1.0, r)
+    axis = r < 1e-9 * g.length  # the core: no radial direction
+    r = np.where(axis, 1.0, r)
+    c, s = x[:, 0] / r, x[:, 1] / r
     radial, hoop = d[:, 0] * c + d[:, 1] * s, -d[:, 0] * s + d[:, 1] * c
     radial[axis], hoop[axis] = np.linalg.norm(d[axis, :2], axis=1), 0.0
     layer = g.wire_layer[g.point_wire[pts]]

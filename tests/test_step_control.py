@@ -202,7 +202,7 @@ def test_a_step_over_a_kink_is_rejected_and_taken_smaller():
     assert max(r.error for r in kept[1:]) > 4e-3 and not any(r.rejections for r in kept)
 
 
-def test_a_failed_attempt_is_retried_once_with_the_predictor_switched_then_halved():
+def test_a_failed_attempt_is_retried_with_the_predictor_switched_then_halved():
     """With ``retry``, a failed attempt is tried again at the same increment from the last
     converged state, without the predictor if it was on (with it if off); if that fails too,
     the increment is halved, and the halved one is tried from both starts in turn again. A

@@ -56,6 +56,8 @@ def ring_centres(geometry: StrandGeometry) -> RingCentres:
         zw = z[offsets[w] : offsets[w + 1]]
         a = np.clip(np.searchsorted(zw, zc, side="right") - 1, 0, len(zw) - 2)
         t = (zc - zw[a]) / (zw[a + 1] - zw[a])
+        if np.any((t < -1e-9) | (t > 1 + 1e-9)):
+            raise ValueError(f"wire {w} of layer 1 does not span the core's length")
         stencils[:, 1 + 2 * j] = offsets[w] + a
         stencils[:, 2 + 2 * j] = offsets[w] + a + 1
         weights[:, 1 + 2 * j] = -(1.0 - t) / n

@@ -71,6 +71,8 @@ VARIANTS = _with_halved(
         "microslip": Variant(None, ['contact.compliance="hertz_microslip"']),
         "facing stations": Variant(None, ['contact.same_layer_stencil="facing"']),
         "balance 1e-3": Variant(None, ["steps.balance=1e-3"]),
+        # the stepper before each halved increment was tried from both starting guesses
+        "retry once per step": Variant("c1f19c1"),
     }
 )
 #: a run without named variants: the issue's start, today's default and the two-node same-layer

@@ -15,12 +15,13 @@ Where the springs' own cuts are exhausted too, a second hold (``onset``) gives t
 with a C¹ onset (the same-layer pairs') a wider one, a cubic over the first ``onset`` of
 approach, exact beyond (``strand.contact.normal_laws.CubicOnset``): the neighbours of a packed
 layer that sit within nanometres of touching then stop opening and closing every iteration (the
-chatter that held 1 m of Cardinal with its ring vaulted at 500 N, design notes 2026-11-29).
+chatter counted on 1 m of Cardinal with its ring vaulted at 500 N, in the bending set-up before
+its core was held centred, design notes 2026-11-29).
 
-Where that fails too, the tangent itself may not be positive (past a buckling, or with
-friction's slip tangent: 1 m of Cardinal with its ring vaulted at 20 kN); an opt-in third hold
-(``relaxation``) solves the step by pseudo-transient continuation instead (``relaxed_solve``),
-which leaves nothing held.
+Where that fails too, the tangent itself may not be positive (past a buckling, as the bending
+set-up's free core at 20 kN before it was centred, or with friction's slip tangent); an opt-in
+third hold (``relaxation``) solves the step by pseudo-transient continuation instead
+(``relaxed_solve``), which leaves nothing held.
 
 What they did is reported as Abaqus reports ALLSD beside ALLIE: the springs' energy at the
 converged step, ½ Σ k (|Δg_T|² + Δg_N²), and in a second hold the force the wider onset leaves

@@ -234,6 +234,48 @@ def test_without_a_stabiliser_the_same_ramp_fails():
         ramp(solver, 0.0, 1.0, first_step=0.25, min_step=0.01, growth=1.0)
 
 
+def test_a_held_increment_is_tried_from_one_start_only():
+    """The retry from the other starting guess is for unheld attempts: each unheld increment is
+    tried from the secant predictor and from the converged state, but a held increment that
+    fails is halved at once (commit 784822a), so that a held step, up to 100 pseudo-time steps
+    at hold 3, costs no more than before the retry was made per increment."""
+    held = Held()
+    stabiliser = Stabiliser([held], lambda: 10.0, MPI.COMM_SELF, stiffness=K_S)
+    solver = HeldSolver(held, fails=lambda lam: 0.5 < lam <= 0.75)
+    unheld, held_attempts = solver.fails, []
+
+    def fails(lam, predicted):
+        """Held, only the first attempt fails: from the predictor at the full increment (from
+        the converged state it would converge, so a retry would take it)."""
+        if held.stiffness is None:
+            return unheld(lam, predicted)
+        held_attempts.append(lam)
+        return len(held_attempts) == 1
+
+    solver.fails = fails
+    kwargs = dict(first_step=0.25, min_step=0.05, growth=1.0, extrapolate=True, retry=True)
+    _, records = ramp(solver, 0.0, 1.0, stabiliser=stabiliser, **kwargs)
+    assert [r.load for r in records] == pytest.approx([0.25, 0.5, 0.625, 0.75, 0.875, 1.0])
+    tried = [
+        (round(lam, 9), p, k is not None)
+        for (lam, p), k in zip(solver.attempts, solver.states, strict=True)
+    ]
+    # unheld, from 0.5: 0.75, 0.625 and 0.5625 fail from both starts; the next cut would go
+    # under min_step
+    assert tried[2:10] == [
+        (0.75, True, False),
+        (0.75, False, False),
+        (0.625, True, False),
+        (0.625, False, False),
+        (0.5625, True, False),
+        (0.5625, False, False),
+        (0.75, True, True),  # held from the first increment; fails, and is not retried
+        (0.625, True, True),  # halved at once, and converges
+    ]
+    assert (records[2].retries, records[2].cuts, records[2].hold) == (3, 3, 1)
+    assert held.stiffness is None and not stabiliser.on
+
+
 def _ring_19(stabilise: float) -> dict:
     """Cardinal's core and first two layers (1+6+12), 0.5 m, its steel ring vaulted over the
     core (``first_layer = "ring"``), pulled to 15 kN, with the springs ``stabilise`` (N/m)."""

@@ -179,7 +179,7 @@ def test_compare_runs_both_sliding_models_and_they_agree(tmp_path, capsys):
 def test_small_sliding_check_against_its_closed_form():
     """Crossing nodes moved round the strand by s: gap drift s²/(2R) (R the outer layer's helix
     radius); moved along the axis, or all together: none; the warning names the interface."""
-    from strand.cable.geometry import build_geometry
+    from strand.cable.geometry import LINE, build_geometry
     from strand.model.sliding_check import sliding_check
 
     g = build_geometry(cardinal(), 0.1, 4e-3)
@@ -203,7 +203,12 @@ def test_small_sliding_check_against_its_closed_form():
     x = g.points.copy()
     x[p.b[p.interface == 1]] += s * around[p.interface == 1]
     check = sliding_check(g, x, gap)
-    assert check.share[1] == 1.0 and "interface 1|2" in check.message()
+    closed = np.count_nonzero((p.interface == 1) & (p.kind != LINE))
+    assert check.share[1] == 1.0 and check.beyond[1] == check.closed[1] == closed
+    assert (
+        f"interface 1|2: the wires slid round the strand so far that the gaps of {closed:,} of its {closed:,} closed pairs (100 %,"
+        in check.message()
+    )
     axial = g.points + np.where(np.isin(np.arange(len(x)), p.b)[:, None], [0, 0, 1e-3], 0.0)
     assert np.all(sliding_check(g, axial, gap).drift == 0.0)
     assert np.all(sliding_check(g, g.points + 1e-3, gap).drift < 1e-20)

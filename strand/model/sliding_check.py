@@ -19,27 +19,34 @@ Array = npt.NDArray[np.float64]
 @dataclass(frozen=True)
 class SlidingCheck:
     """How far the small-sliding assumption holds at a state, per interface i|i+1 (crossings):
-    the largest drift (m) of a pair's gap caused by sliding, the share of its closed pairs whose
-    drift exceeds ``LIMIT`` × the interface's mean contact approach (m, over its closed pairs),
-    and the z (m) of the largest drift."""
+    the largest drift (m) of a pair's gap caused by sliding, how many of its closed pairs there
+    are and how many of them drift by more than ``LIMIT`` × the interface's mean contact approach
+    (m, over its closed pairs), and the z (m) of the largest drift."""
 
     drift: Array
-    share: Array
+    beyond: npt.NDArray[np.intp]
+    closed: npt.NDArray[np.intp]
     approach: Array
     z: Array
 
     #: the drift, as a share of the mean approach, beyond which a pair's force is unreliable
     LIMIT = 0.25
 
+    @property
+    def share(self) -> Array:
+        """The share of each interface's closed pairs beyond the limit (0 where none is closed)."""
+        return self.beyond / np.maximum(self.closed, 1)
+
     def exceeded(self) -> npt.NDArray[np.intp]:
         """Interfaces with at least one pair beyond the limit."""
-        return np.flatnonzero(self.share > 0)
+        return np.flatnonzero(self.beyond > 0)
 
     def message(self) -> str:
         i = int(self.exceeded()[0])
         return (
             f"beyond small sliding at interface {i}|{i + 1}: the wires slid round the strand so "
-            f"far that the gaps of {100 * self.share[i]:.1f} % of its pairs (fixed at t = 0) "
+            f"far that the gaps of {self.beyond[i]:,} of its {self.closed[i]:,} closed pairs "
+            f"({100 * self.share[i]:.3g} %, fixed at t = 0) "
             f"drift by more than {100 * self.LIMIT:.0f} % of the mean contact approach "
             f"({1e6 * self.approach[i]:.2f} µm), by up to {1e6 * self.drift[i]:.2f} µm at "
             f"z = {self.z[i]:.3f} m: their forces are unreliable (docs/theory.md §3.2; "
@@ -64,7 +71,8 @@ def sliding_check(geometry, positions: Array, gap: Array) -> SlidingCheck:
     s = np.einsum("ij,ij->i", moved[p.b] - moved[p.a], around)
     drift = s**2 / (2 * radius)
     n = len(geometry.cable.layers) - 1
-    out = {k: np.zeros(n) for k in ("drift", "share", "z")}
+    out = {k: np.zeros(n) for k in ("drift", "z")}
+    out |= {k: np.zeros(n, dtype=np.intp) for k in ("beyond", "closed")}
     out["approach"] = np.full(n, np.inf)
     for i in range(n):
         closed = np.flatnonzero((p.interface == i) & (p.kind != LINE) & (gap < 0))
@@ -74,5 +82,6 @@ def sliding_check(geometry, positions: Array, gap: Array) -> SlidingCheck:
         approach = -gap[closed].mean()
         out["drift"][i], out["z"][i] = drift[worst], geometry.points[p.a[worst], 2]
         out["approach"][i] = approach
-        out["share"][i] = np.mean(drift[closed] > SlidingCheck.LIMIT * approach)
+        out["closed"][i] = len(closed)
+        out["beyond"][i] = np.count_nonzero(drift[closed] > SlidingCheck.LIMIT * approach)
     return SlidingCheck(**out)

@@ -19,6 +19,7 @@ from strand.analytical.fibre import fibre_model
 from strand.app.case import load_case
 from strand.app.cli import main
 from strand.cable.description import CableError, cable_from_dict, judge120
+from strand.fatigue.zones import free_span, lock_reach
 
 CASE = Path(__file__).parents[1] / "cases" / "mooring_judge120.toml"
 
@@ -119,8 +120,10 @@ def test_the_fibre_model_bounds_the_measured_and_the_3d_stiffness():
 
 def test_the_mooring_case_reads_as_its_comments_say():
     """Mean tension 25 % MBS, swing ±5 % MBS (range 10 %), a saddle load of 2 % of the mean
-    tension held (the axis turns by 2 atan(0.01) = 1.15°), 0.3 m = two lay lengths of layer 1;
-    every layer is steel and assessed with EN 1992-1-1's prestressing-steel curve."""
+    tension held (the axis turns by 2 atan(0.01) = 1.15°), 1.86 m = three lay lengths of the
+    outer layer, leaving a free span of z = 0.31–1.55 m between the default end zones (half the
+    outer lay length); every layer is steel and assessed with EN 1992-1-1's prestressing-steel
+    curve."""
     case = load_case(CASE)
     assert case.cable.name == judge120().name
     load = case.load
@@ -131,20 +134,26 @@ def test_the_mooring_case_reads_as_its_comments_say():
     assert math.degrees(2 * math.atan(load.fixed_lateral / 2 / load.tension)) == pytest.approx(
         1.15, abs=0.01
     )
-    assert case.mesh.length == pytest.approx(2 * LAY_LENGTHS[0])
+    assert case.mesh.length == pytest.approx(3 * LAY_LENGTHS[-1])
+    assert case.fatigue.end_zone == 0  # the default: the lock's reach
+    reach = lock_reach(case.cable)
+    assert reach == pytest.approx(LAY_LENGTHS[-1] / 2, rel=1e-4)  # the pitch back from α
+    assert free_span(case.mesh.length, reach) == pytest.approx((0.31, 1.55), rel=1e-4)
     curves = case.fatigue.curves(case.cable)
     assert all(c is not None and "prestressing steel" in c.name for c in curves)
 
 
 @pytest.mark.slow
 def test_a_cheap_run_of_the_case_writes_the_wire_level_versus_t_n_comparison(tmp_path):
-    """The case at 0.05 m (h_max 10 mm, ~30 s): every layer's mean stress change over the cycle is
-    the fibre model's E cos²α ΔT/EA within 3 %; fatigue.txt assesses every layer, and gives the
-    strand's T–N damages per cycle beside the wire-level one, API RP 2SK's being its closed form
-    R^5.05 / K, R = ΔT/MBS, log₁₀K = 3.25 − 3.43 T_mean/MBS, for the printed mean and largest
-    range of the rebuilt midspan tension (one steady cycle of the whole range), within 5 %."""
+    """The case at 0.05 m (h_max 10 mm, a 50 kN first tension step, ~30 s): every layer's mean
+    stress change over the cycle is the fibre model's E cos²α ΔT/EA within 3 %; fatigue.txt
+    assesses every layer, and gives the strand's T–N damages per cycle beside the wire-level one,
+    API RP 2SK's being its closed form R^5.05 / K, R = ΔT/MBS, log₁₀K = 3.25 − 3.43 T_mean/MBS,
+    for the printed mean and largest range of the rebuilt midspan tension (one steady cycle of
+    the whole range), within 5 %."""
     out = tmp_path / "cheap"
-    sets = ["mesh.length=0.05", "mesh.h_max=1e-2", "output.fields=false", "output.plots=false"]
+    sets = ["mesh.length=0.05", "mesh.h_max=1e-2", "steps.tension=50e3"]
+    sets += ["output.fields=false", "output.plots=false"]
     args = ["run", str(CASE), "--out", str(out)]
     assert main([*args, *[a for s in sets for a in ("--set", s)]]) == 0
     summary = (out / "summary.txt").read_text()

@@ -71,17 +71,15 @@ def sliding_check(geometry, positions: Array, gap: Array) -> SlidingCheck:
     s = np.einsum("ij,ij->i", moved[p.b] - moved[p.a], around)
     drift = s**2 / (2 * radius)
     n = len(geometry.cable.layers) - 1
-    out = {k: np.zeros(n) for k in ("drift", "z")}
-    out |= {k: np.zeros(n, dtype=np.intp) for k in ("beyond", "closed")}
-    out["approach"] = np.full(n, np.inf)
+    largest, at, approach = np.zeros(n), np.zeros(n), np.full(n, np.inf)
+    beyond, count = np.zeros(n, dtype=np.intp), np.zeros(n, dtype=np.intp)
     for i in range(n):
         closed = np.flatnonzero((p.interface == i) & (p.kind != LINE) & (gap < 0))
         if not len(closed):
             continue
         worst = closed[np.argmax(drift[closed])]
-        approach = -gap[closed].mean()
-        out["drift"][i], out["z"][i] = drift[worst], geometry.points[p.a[worst], 2]
-        out["approach"][i] = approach
-        out["closed"][i] = len(closed)
-        out["beyond"][i] = np.count_nonzero(drift[closed] > SlidingCheck.LIMIT * approach)
-    return SlidingCheck(**out)
+        largest[i], at[i] = drift[worst], geometry.points[p.a[worst], 2]
+        approach[i] = -gap[closed].mean()
+        count[i] = len(closed)
+        beyond[i] = np.count_nonzero(drift[closed] > SlidingCheck.LIMIT * approach[i])
+    return SlidingCheck(drift=largest, beyond=beyond, closed=count, approach=approach, z=at)
